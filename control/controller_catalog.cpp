@@ -1,0 +1,52 @@
+#include "control/controller_catalog.hpp"
+
+#include <stdexcept>
+
+namespace netmc::control {
+namespace {
+
+std::string usage() {
+  return "expected AXIS or AXIS+COMPENSATOR with AXIS one of adrc, pid and COMPENSATOR one of "
+         "pidccc, ilccc";
+}
+
+std::unique_ptr<AxisController> make_axis(std::string_view name, const ControllerSettings& s,
+                                          double h) {
+  if (name == "adrc") return std::make_unique<AdrcController>(s.adrc, h);
+  if (name == "pid") return std::make_unique<PidAxisController>(s.pid, h);
+  return nullptr;
+}
+
+std::unique_ptr<ContourCompensator> make_compensator(std::string_view name,
+                                                     const ControllerSettings& s, double h) {
+  if (name.empty()) return std::make_unique<NoContourCompensation>();
+  if (name == "pidccc") return std::make_unique<PidCrossCoupling>(s.pidccc, h);
+  if (name == "ilccc") return std::make_unique<IterativeLearningCrossCoupling>(s.ilccc, h);
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::string> axis_controller_names() { return {"adrc", "pid"}; }
+std::vector<std::string> contour_compensator_names() { return {"pidccc", "ilccc"}; }
+
+ContouringController make_contouring_controller(std::string_view name,
+                                                const ControllerSettings& settings,
+                                                double sample_period_s) {
+  const std::size_t plus = name.find('+');
+  const std::string_view axis_name = name.substr(0, plus);
+  const std::string_view compensator_name =
+      plus == std::string_view::npos ? std::string_view{} : name.substr(plus + 1);
+  auto x_axis = make_axis(axis_name, settings, sample_period_s);
+  auto compensator = make_compensator(compensator_name, settings, sample_period_s);
+  if (!x_axis || !compensator || (plus != std::string_view::npos && compensator_name.empty())) {
+    throw std::invalid_argument("controller: unknown name '" + std::string(name) + "' (" +
+                                usage() + ")");
+  }
+  auto y_axis = x_axis->clone();
+  return ContouringController(std::move(x_axis), std::move(y_axis),
+                              make_contour_error_estimator(settings.estimator),
+                              std::move(compensator));
+}
+
+}  // namespace netmc::control

@@ -1,0 +1,32 @@
+#pragma once
+// Contouring controllers chosen by name: AXIS[+COMPENSATOR], e.g. "adrc", "adrc+ilccc".
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "control/adrc_controller.hpp"
+#include "control/contouring_controller.hpp"
+#include "control/iterative_learning_cross_coupling.hpp"
+#include "control/pid_axis_controller.hpp"
+#include "control/pid_cross_coupling.hpp"
+
+namespace netmc::control {
+
+// Defaults are paper 001's gains (sec. 1.6 of the digest).
+struct ControllerSettings {
+  AdrcGains adrc;
+  PidAxisGains pid;
+  PidCrossCouplingGains pidccc;
+  IterativeLearningGains ilccc;
+  std::string estimator = "curvature";
+};
+
+std::vector<std::string> axis_controller_names();        // adrc, pid
+std::vector<std::string> contour_compensator_names();    // pidccc, ilccc
+// Throws std::invalid_argument("controller: ...") for an unknown name or invalid gain.
+ContouringController make_contouring_controller(std::string_view name,
+                                                const ControllerSettings& settings,
+                                                double sample_period_s);
+
+}  // namespace netmc::control
