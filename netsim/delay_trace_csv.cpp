@@ -1,0 +1,105 @@
+// Reading of delay traces from CSV files; the format is documented at load_delay_trace_csv
+// in delay_model.hpp.
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string_view>
+#include <system_error>
+
+#include "netsim/delay_model.hpp"
+
+namespace netmc::netsim {
+
+namespace {
+
+std::string_view trim(std::string_view text) {
+  constexpr std::string_view whitespace = " \t\r\n";  // '\r' so CRLF files work too
+  const auto first = text.find_first_not_of(whitespace);
+  if (first == std::string_view::npos) return {};
+  const auto last = text.find_last_not_of(whitespace);
+  return text.substr(first, last - first + 1);
+}
+
+std::string_view last_column(std::string_view line) {
+  const auto comma = line.rfind(',');
+  return trim(comma == std::string_view::npos ? line : line.substr(comma + 1));
+}
+
+// Locale-independent parse of the whole token; nullopt if it is not a number.
+// Out-of-range magnitudes come back as +inf so the finiteness check reports them.
+std::optional<double> parse_number(std::string_view token) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  if (token.empty()) return std::nullopt;
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (end != token.data() + token.size()) return std::nullopt;
+  if (error == std::errc::result_out_of_range) return std::numeric_limits<double>::infinity();
+  if (error != std::errc()) return std::nullopt;
+  return value;
+}
+
+// Seconds per unit named by a header column's suffix; seconds when there is no known suffix.
+double unit_from_header(std::string_view column_name) {
+  std::string name;
+  for (const char c : column_name) {
+    if (c != '"') name.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+  }
+  const std::string_view unit_name = trim(name);
+  if (unit_name.ends_with("_ms")) return 1e-3;
+  if (unit_name.ends_with("_us")) return 1e-6;
+  return 1.0;
+}
+
+[[noreturn]] void fail(const std::string& path, std::size_t line_number, const std::string& problem) {
+  throw std::invalid_argument("delay trace CSV " + path + ":" + std::to_string(line_number) + ": " + problem);
+}
+
+}  // namespace
+
+std::vector<double> load_delay_trace_csv(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) {
+    throw std::invalid_argument("delay trace CSV " + path + ": cannot open the file for reading");
+  }
+  std::vector<double> delays_s;
+  double seconds_per_unit = 1.0;
+  bool header_possible = true;
+  std::size_t line_number = 0;
+  std::string line;
+  while (std::getline(file, line)) {
+    ++line_number;
+    const std::string_view text = trim(line);
+    if (text.empty() || text.front() == '#') continue;
+    const std::string_view token = last_column(text);
+    const std::optional<double> value = parse_number(token);
+    if (header_possible) {
+      header_possible = false;
+      if (!value) {
+        seconds_per_unit = unit_from_header(token);
+        continue;
+      }
+    }
+    if (!value) {
+      fail(path, line_number,
+           "last column must be a delay number (got '" + std::string(token) + "'; a header is only allowed "
+           "as the first non-comment line)");
+    }
+    if (!(std::isfinite(*value) && *value >= 0.0)) {
+      fail(path, line_number, "delay must be a finite number >= 0 (got '" + std::string(token) + "')");
+    }
+    delays_s.push_back(*value * seconds_per_unit);
+  }
+  if (file.bad()) fail(path, line_number, "read error");
+  if (delays_s.empty()) {
+    fail(path, line_number + 1,
+         "no delay samples before end of file (expected lines whose last comma-separated column is a delay)");
+  }
+  return delays_s;
+}
+
+}  // namespace netmc::netsim

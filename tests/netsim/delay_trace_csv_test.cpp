@@ -1,0 +1,115 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "netsim/delay_model.hpp"
+#include "netsim_test_support.hpp"
+
+namespace netmc::netsim {
+namespace {
+
+using test::expect_invalid_argument;
+
+const std::string kDataDir = NETMC_TEST_DATA_DIR;
+
+// A CSV file in the temp directory, named after the running test, removed afterwards.
+class TempCsv {
+ public:
+  explicit TempCsv(const std::string& content) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::temp_directory_path() /
+            ("netmc_netsim_" + std::string(info->name()) + "_" + std::to_string(counter_++) + ".csv");
+    std::ofstream(path_, std::ios::binary) << content;
+  }
+  ~TempCsv() {
+    std::error_code ignored;
+    std::filesystem::remove(path_, ignored);
+  }
+  TempCsv(const TempCsv&) = delete;
+  TempCsv& operator=(const TempCsv&) = delete;
+  std::string path() const { return path_.string(); }
+
+ private:
+  static inline int counter_ = 0;
+  std::filesystem::path path_;
+};
+
+void expect_delays(const std::vector<double>& actual, const std::vector<double>& expected) {
+  ASSERT_EQ(actual.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_DOUBLE_EQ(actual[i], expected[i]) << "sample " << i;
+}
+
+TEST(DelayTraceCsv, MillisecondFixtureWithCommentsHeaderAndBlankLines) {
+  expect_delays(load_delay_trace_csv(kDataDir + "/delay_trace_ms.csv"), {1.5e-3, 2.25e-3, 0.5e-3, 10e-3});
+}
+
+TEST(DelayTraceCsv, SecondsFixtureWithoutHeader) {
+  expect_delays(load_delay_trace_csv(kDataDir + "/delay_trace_s.csv"), {0.001, 0.0025, 0.0004});
+}
+
+TEST(DelayTraceCsv, HeaderSuffixSetsUnit) {
+  TempCsv microseconds("t,delay_us\n0,250\n1,1e3\n");
+  expect_delays(load_delay_trace_csv(microseconds.path()), {250e-6, 1e-3});
+  TempCsv seconds("\"delay_s\"\n0.5\n");
+  expect_delays(load_delay_trace_csv(seconds.path()), {0.5});
+  TempCsv unknown_suffix("cycle,delay\n0,0.002\n");
+  expect_delays(load_delay_trace_csv(unknown_suffix.path()), {0.002});
+  TempCsv upper_case("CYCLE,DELAY_MS\n0,2\n");
+  expect_delays(load_delay_trace_csv(upper_case.path()), {0.002});
+}
+
+TEST(DelayTraceCsv, HandlesCrlfWhitespaceAndPlusSign) {
+  TempCsv file("delay_ms\r\n  # indented comment\r\n 1.0 \r\n+2\r\n\r\n");
+  expect_delays(load_delay_trace_csv(file.path()), {1e-3, 2e-3});
+}
+
+TEST(DelayTraceCsv, LoadedTraceFeedsTraceDelay) {
+  auto model = make_trace_delay(load_delay_trace_csv(kDataDir + "/delay_trace_s.csv"));
+  RandomStream rng(1);
+  EXPECT_DOUBLE_EQ(model->next_delay_s(rng), 0.001);
+  EXPECT_DOUBLE_EQ(model->mean_s(), (0.001 + 0.0025 + 0.0004) / 3.0);
+}
+
+TEST(DelayTraceCsv, NegativeValueNamesFileAndLine) {
+  TempCsv file("# trace\ndelay_ms\n1\n-2\n");
+  expect_invalid_argument([&] { load_delay_trace_csv(file.path()); },
+                          {file.path() + ":4:", "finite number >= 0", "'-2'"});
+}
+
+TEST(DelayTraceCsv, NaNAndInfinityAreRejected) {
+  TempCsv not_a_number("0.001\nnan\n");
+  expect_invalid_argument([&] { load_delay_trace_csv(not_a_number.path()); }, {not_a_number.path() + ":2:", "nan"});
+  TempCsv infinite("0.001\n0.002\ninf\n");
+  expect_invalid_argument([&] { load_delay_trace_csv(infinite.path()); }, {infinite.path() + ":3:", "finite"});
+  TempCsv out_of_range("1e999\n");
+  expect_invalid_argument([&] { load_delay_trace_csv(out_of_range.path()); }, {out_of_range.path() + ":1:"});
+}
+
+TEST(DelayTraceCsv, NonNumericDataLineIsMalformed) {
+  TempCsv file("delay_s\n0.001\n0.002x\n");
+  expect_invalid_argument([&] { load_delay_trace_csv(file.path()); },
+                          {file.path() + ":3:", "last column must be a delay number", "'0.002x'"});
+  TempCsv empty_column("0.001\n5,\n");
+  expect_invalid_argument([&] { load_delay_trace_csv(empty_column.path()); }, {empty_column.path() + ":2:"});
+}
+
+TEST(DelayTraceCsv, EmptyOrHeaderOnlyFileIsAnError) {
+  TempCsv empty("");
+  expect_invalid_argument([&] { load_delay_trace_csv(empty.path()); }, {empty.path() + ":1:", "no delay samples"});
+  TempCsv only_comments("# nothing here\n\n");
+  expect_invalid_argument([&] { load_delay_trace_csv(only_comments.path()); },
+                          {only_comments.path() + ":3:", "no delay samples"});
+  TempCsv header_only("cycle,delay_ms\n");
+  expect_invalid_argument([&] { load_delay_trace_csv(header_only.path()); }, {"no delay samples"});
+}
+
+TEST(DelayTraceCsv, MissingFileIsNamed) {
+  const std::string path = kDataDir + "/delay_trace_does_not_exist.csv";
+  expect_invalid_argument([&] { load_delay_trace_csv(path); }, {path, "cannot open"});
+}
+
+}  // namespace
+}  // namespace netmc::netsim
