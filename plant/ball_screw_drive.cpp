@@ -1,0 +1,86 @@
+#include "plant/ball_screw_drive.hpp"
+
+#include <sstream>
+
+#include "plant/parameter_checks.hpp"
+#include "plant/rk4_integrator.hpp"
+
+namespace netmc::plant {
+namespace {
+
+constexpr const char* kOwner = "BallScrewDrive";
+
+BallScrewParameters validated(BallScrewParameters p) {
+  require_positive(kOwner, "inertia", p.inertia);
+  require_non_negative(kOwner, "damping", p.damping);
+  require_positive(kOwner, "amplifier_gain", p.amplifier_gain);
+  require_positive(kOwner, "torque_constant", p.torque_constant);
+  require_positive(kOwner, "lead_m_per_rad", p.lead_m_per_rad);
+  validate_disturbance(p.disturbance, kOwner);
+  require_positive(kOwner, "max_substep_s", p.max_substep_s);
+  return p;
+}
+
+}  // namespace
+
+BallScrewDrive::BallScrewDrive(BallScrewParameters p)
+    : p_(validated(p)),
+      // Paper 002, eq. 1 divided by J s: motor torque Ka Kt (u + d) drives J theta'' + B theta',
+      // and y = rg theta.
+      gain_(p_.amplifier_gain * p_.torque_constant * p_.lead_m_per_rad / p_.inertia),
+      rate_(p_.damping / p_.inertia) {
+  Eigen::Matrix2d a;
+  a << 0.0, 1.0, 0.0, -rate_;
+  exact_ = ExactDiscretizer(a, Eigen::Vector2d(0.0, gain_));
+}
+
+void BallScrewDrive::reset(double position, double velocity) {
+  require_finite(kOwner, "position", position);
+  require_finite(kOwner, "velocity", velocity);
+  z_ << position, velocity;
+  time_ = 0.0;
+}
+
+void BallScrewDrive::advance(double duration_s, double input) {
+  require_advance_arguments(kOwner, duration_s, input);
+  if (duration_s == 0.0) return;
+  for_each_smooth_piece(
+      p_.disturbance, time_, duration_s,
+      [&](double t0, double dt, double step_level) { advance_piece(t0, dt, input, step_level); });
+  time_ += duration_s;
+}
+
+void BallScrewDrive::advance_piece(double t0, double duration, double input, double step_level) {
+  const Disturbance& d = p_.disturbance;
+  if (smooth_part_is_constant(d)) {
+    exact_.step(z_, duration, input + smooth_part(d, t0) + step_level);
+    return;
+  }
+  const double k = gain_;
+  const double r = rate_;
+  const long long n = substep_count(kOwner, duration, p_.max_substep_s);
+  double y = z_(0);
+  double v = z_(1);
+  // Paper 002, eq. 1: y'' = -(B/J) y' + (Ka Kt rg / J) (u + d(t)).
+  rk4_second_order(y, v, t0, duration, n, [&](double t, double, double vv) {
+    return -r * vv + k * (input + smooth_part(d, t) + step_level);
+  });
+  z_ << y, v;
+}
+
+std::unique_ptr<AxisPlant> BallScrewDrive::clone() const {
+  return std::make_unique<BallScrewDrive>(*this);
+}
+
+std::string BallScrewDrive::describe() const {
+  std::ostringstream out;
+  out << "BallScrewDrive (paper 002 eq. 1): J=" << p_.inertia << " kg m^2, B=" << p_.damping
+      << " N m s/rad, Ka=" << p_.amplifier_gain << " A/V, Kt=" << p_.torque_constant
+      << " N m/A, rg=" << p_.lead_m_per_rad << " m/rad";
+  if (rate_ > 0.0) out << " (steady " << gain_ / rate_ << " m/s per V)";
+  out << ", d=" << describe_disturbance(p_.disturbance, "V") << ", max_substep=" << p_.max_substep_s
+      << " s";
+  return out.str();
+}
+
+}  // namespace netmc::plant

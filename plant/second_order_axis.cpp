@@ -1,0 +1,94 @@
+#include "plant/second_order_axis.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+#include "plant/parameter_checks.hpp"
+#include "plant/rk4_integrator.hpp"
+
+namespace netmc::plant {
+namespace {
+
+constexpr const char* kOwner = "SecondOrderAxis";
+
+SecondOrderAxisParameters validated(SecondOrderAxisParameters p) {
+  require_finite(kOwner, "a1", p.a1);
+  require_finite(kOwner, "a2", p.a2);
+  require_finite(kOwner, "b", p.b);
+  require_non_negative(kOwner, "coulomb_acceleration", p.coulomb_acceleration);
+  require_positive(kOwner, "coulomb_velocity_scale", p.coulomb_velocity_scale);
+  validate_disturbance(p.disturbance, kOwner);
+  require_positive(kOwner, "max_substep_s", p.max_substep_s);
+  return p;
+}
+
+}  // namespace
+
+SecondOrderAxis::SecondOrderAxis(SecondOrderAxisParameters p) : p_(validated(std::move(p))) {
+  // Paper 001, eq. 3 in state form z = [x1, x2]: x1' = x2, x2' = a1 x1 + a2 x2 + w, with the held
+  // input w = b u + d entering the velocity equation.
+  Eigen::Matrix2d a;
+  a << 0.0, 1.0, p_.a1, p_.a2;
+  exact_ = ExactDiscretizer(a, Eigen::Vector2d(0.0, 1.0));
+}
+
+void SecondOrderAxis::reset(double position, double velocity) {
+  require_finite(kOwner, "position", position);
+  require_finite(kOwner, "velocity", velocity);
+  z_ << position, velocity;
+  time_ = 0.0;
+}
+
+void SecondOrderAxis::advance(double duration_s, double input) {
+  require_advance_arguments(kOwner, duration_s, input);
+  if (duration_s == 0.0) return;
+  for_each_smooth_piece(
+      p_.disturbance, time_, duration_s,
+      [&](double t0, double dt, double step_level) { advance_piece(t0, dt, input, step_level); });
+  time_ += duration_s;
+}
+
+void SecondOrderAxis::advance_piece(double t0, double duration, double input, double step_level) {
+  const Disturbance& d = p_.disturbance;
+  if (p_.coulomb_acceleration == 0.0 && smooth_part_is_constant(d)) {
+    // Linear with a held input: exact (digest 1.2 [A]).
+    exact_.step(z_, duration, p_.b * input + smooth_part(d, t0) + step_level);
+    return;
+  }
+  const double forcing = p_.b * input + step_level;
+  const double c = p_.coulomb_acceleration;
+  const double inv_scale = 1.0 / p_.coulomb_velocity_scale;
+  const double a1 = p_.a1;
+  const double a2 = p_.a2;
+  const long long n = substep_count(kOwner, duration, p_.max_substep_s);
+  double x = z_(0);
+  double v = z_(1);
+  // Paper 001, eq. 3 with the digest 1.7 [A] friction -c tanh(x'/scale).
+  if (smooth_part_is_constant(d)) {
+    const double w = forcing + smooth_part(d, t0);
+    rk4_second_order(x, v, t0, duration, n, [&](double, double xx, double vv) {
+      return a1 * xx + a2 * vv + w - c * std::tanh(vv * inv_scale);
+    });
+  } else {
+    rk4_second_order(x, v, t0, duration, n, [&](double t, double xx, double vv) {
+      return a1 * xx + a2 * vv + forcing + smooth_part(d, t) - c * std::tanh(vv * inv_scale);
+    });
+  }
+  z_ << x, v;
+}
+
+std::unique_ptr<AxisPlant> SecondOrderAxis::clone() const {
+  return std::make_unique<SecondOrderAxis>(*this);
+}
+
+std::string SecondOrderAxis::describe() const {
+  std::ostringstream out;
+  out << "SecondOrderAxis (paper 001 eq. 3): a1=" << p_.a1 << " 1/s^2, a2=" << p_.a2
+      << " 1/s, b=" << p_.b << ", coulomb=" << p_.coulomb_acceleration << " m/s^2 (scale "
+      << p_.coulomb_velocity_scale << " m/s), d=" << describe_disturbance(p_.disturbance, "m/s^2")
+      << ", max_substep=" << p_.max_substep_s << " s";
+  return out.str();
+}
+
+}  // namespace netmc::plant

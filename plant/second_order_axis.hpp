@@ -1,0 +1,49 @@
+#pragma once
+// Paper 001, eq. 3: one servo axis in speed mode,
+//   x'' = a1 x + a2 x' + b u + d(t) - coulomb * tanh(x' / coulomb_velocity_scale),
+// with the Coulomb-like friction of digest 1.7 [A]. d(t) enters as an acceleration (m/s^2).
+// Linear pieces (no friction, d constant over the piece) are integrated exactly by the matrix
+// exponential; otherwise classical RK4 with sub-steps no longer than max_substep_s.
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+#include "plant/axis_plant.hpp"
+#include "plant/disturbance.hpp"
+#include "plant/exact_discretizer.hpp"
+
+namespace netmc::plant {
+
+struct SecondOrderAxisParameters {
+  double a1 = 0, a2 = -20, b = 20;       // 1/s^2, 1/s, (m/s^2) per input unit
+  double coulomb_acceleration = 0;       // m/s^2, >= 0
+  double coulomb_velocity_scale = 5e-5;  // m/s, > 0: tanh smoothing of sgn(x')
+  Disturbance disturbance;               // m/s^2
+  double max_substep_s = 1e-4;           // RK4 sub-step bound, > 0
+};
+
+class SecondOrderAxis final : public AxisPlant {
+ public:
+  explicit SecondOrderAxis(SecondOrderAxisParameters p);
+
+  void reset(double position, double velocity) override;
+  void advance(double duration_s, double input) override;
+  double position() const override { return z_(0); }
+  double velocity() const override { return z_(1); }
+  double time() const override { return time_; }
+  std::unique_ptr<AxisPlant> clone() const override;
+  std::string describe() const override;
+
+  const SecondOrderAxisParameters& parameters() const { return p_; }
+
+ private:
+  void advance_piece(double t0, double duration, double input, double step_level);
+
+  SecondOrderAxisParameters p_;
+  ExactDiscretizer exact_;
+  Eigen::Vector2d z_ = Eigen::Vector2d::Zero();  // [x, x']
+  double time_ = 0.0;
+};
+
+}  // namespace netmc::plant
