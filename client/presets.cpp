@@ -1,0 +1,107 @@
+#include "client/presets.hpp"
+
+#include <stdexcept>
+
+namespace netmc::cli {
+namespace {
+
+constexpr std::uint32_t kSeed001Iterations = 20;
+
+// Paper 001's three controllers plus its PD-ILC with a zero-phase Q-filter: the paper's law is
+// not monotonically convergent and drifts upwards after some tens of iterations (README).
+constexpr double kQFilterCutoffHz = 20.0;
+
+StudyPlan seed001_study(const std::string& title, const netmc::v1::Trajectory* trajectory,
+                        const netmc::v1::DelayProfile* delay) {
+  StudyPlan plan;
+  plan.title = title;
+  for (const char* controller : {"adrc", "adrc+pidccc", "adrc+ilccc", "adrc+ilccc"}) {
+    auto job = seed001_job(controller);
+    if (trajectory) *job.mutable_trajectory() = *trajectory;
+    if (delay) *job.mutable_downlink()->mutable_delay() = *delay;
+    plan.jobs.push_back(job);
+  }
+  plan.jobs.back().set_name("adrc+ilccc+q20hz");
+  plan.jobs.back().mutable_controller()->mutable_ilccc()->set_q_cutoff_hz(kQFilterCutoffHz);
+  return plan;
+}
+
+}  // namespace
+
+netmc::v1::JobSpec seed001_job(const std::string& controller) {
+  netmc::v1::JobSpec job;
+  auto& circle = *job.mutable_trajectory()->mutable_circle();
+  circle.set_radius_m(0.010);
+  circle.set_center_x_m(0.050);
+  circle.set_center_y_m(0.050);
+  circle.set_period_s(8.0);
+  job.set_plant("seed001");
+  job.mutable_controller()->set_name(controller);
+  auto& delay = *job.mutable_downlink()->mutable_delay()->mutable_uniform();
+  delay.set_min_s(0.3e-3);
+  delay.set_max_s(0.8e-3);
+  job.set_sample_period_s(0.005);
+  job.set_iterations(kSeed001Iterations);
+  job.set_seed(1);
+  return job;
+}
+
+std::vector<std::string> preset_names() {
+  return {"seed001", "seed001-ellipse", "seed001-line", "seed001-long-delay", "seed001-bursty"};
+}
+
+StudyPlan make_preset(std::string_view name) {
+  if (name == "seed001") {
+    StudyPlan plan = seed001_study("paper 001, Table 1: circle r = 10 mm, h = 5 ms, tau ~ U(0.3, 0.8) ms",
+                                   nullptr, nullptr);
+    plan.paper = {{"adrc", 0.0811e-3, 77.6556e-3},
+                  {"adrc+pidccc", 0.0354e-3, 14.1730e-3},
+                  {"adrc+ilccc", 0.0177e-3, 4.8908e-3}};
+    plan.paper_source = "paper 001, Table 1";
+    return plan;
+  }
+  if (name == "seed001-ellipse") {
+    netmc::v1::Trajectory t;
+    auto& e = *t.mutable_ellipse();
+    e.set_semi_axis_x_m(0.020);
+    e.set_semi_axis_y_m(0.005);
+    e.set_center_x_m(0.050);
+    e.set_center_y_m(0.050);
+    e.set_period_s(8.0);
+    return seed001_study("ellipse a = 20 mm, b = 5 mm (4:1), 8 s, seed001 plant and gains", &t, nullptr);
+  }
+  if (name == "seed001-line") {
+    netmc::v1::Trajectory t;
+    auto& l = *t.mutable_line();
+    l.set_x0_m(0.040);
+    l.set_y0_m(0.040);
+    l.set_x1_m(0.080);
+    l.set_y1_m(0.060);
+    l.set_duration_s(8.0);
+    return seed001_study("line (40, 40) -> (80, 60) mm in 8 s, seed001 plant and gains", &t, nullptr);
+  }
+  if (name == "seed001-long-delay") {
+    netmc::v1::DelayProfile d;
+    d.mutable_uniform()->set_min_s(2e-3);
+    d.mutable_uniform()->set_max_s(8e-3);
+    return seed001_study("paper 001 circle with tau ~ U(2, 8) ms (beyond one period)", nullptr, &d);
+  }
+  if (name == "seed001-bursty") {
+    netmc::v1::DelayProfile d;
+    auto& m = *d.mutable_markov();
+    m.mutable_good()->set_min_s(0.3e-3);
+    m.mutable_good()->set_max_s(0.8e-3);
+    m.mutable_bad()->set_min_s(3e-3);
+    m.mutable_bad()->set_max_s(12e-3);
+    m.set_p_good_to_bad(0.02);
+    m.set_p_bad_to_good(0.2);
+    return seed001_study("paper 001 circle with bursty Markov delay (good 0.3-0.8 ms, bad 3-12 ms)",
+                         nullptr, &d);
+  }
+  std::string expected;
+  for (const auto& n : preset_names()) expected += (expected.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("--preset: unknown name '" + std::string(name) +
+                              "' (expected one of: " + expected + ")");
+}
+
+}  // namespace netmc::cli

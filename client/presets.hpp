@@ -1,0 +1,34 @@
+#pragma once
+// Named studies: a list of jobs run side by side, and the paper's table to print beside them.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "idl/job.pb.h"
+
+namespace netmc::cli {
+
+struct PaperRow {
+  std::string controller;
+  double e_max_m;
+  double e_sum_m;
+};
+
+struct StudyPlan {
+  std::string title;
+  std::vector<netmc::v1::JobSpec> jobs;
+  std::vector<PaperRow> paper;      // empty when the study has no paper reference
+  std::string paper_source;
+};
+
+std::vector<std::string> preset_names();
+// Throws std::invalid_argument("--preset: ...") for an unknown name.
+StudyPlan make_preset(std::string_view name);
+
+// Paper 001's experiment (Table 1): circle r = 10 mm at (50, 50) mm, 8 s, h = 5 ms, loop delay
+// uniform 0.3..0.8 ms, plant seed001, for `controller`.
+netmc::v1::JobSpec seed001_job(const std::string& controller);
+
+}  // namespace netmc::cli

@@ -1,0 +1,281 @@
+#include "client/spec_syntax.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+namespace netmc::cli {
+namespace {
+
+[[noreturn]] void fail(std::string_view field, const std::string& message) {
+  throw std::invalid_argument(std::string(field) + ": " + message);
+}
+
+std::string_view trim(std::string_view text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  return text;
+}
+
+struct KindSpec {
+  std::string kind;
+  std::string argument;                     // text after ':'
+  std::map<std::string, std::string> keys;  // when the argument is key=value,...
+};
+
+KindSpec split_kind(std::string_view text) {
+  KindSpec spec;
+  const std::size_t colon = text.find(':');
+  spec.kind = std::string(trim(text.substr(0, colon)));
+  if (colon != std::string_view::npos) spec.argument = std::string(trim(text.substr(colon + 1)));
+  return spec;
+}
+
+// Parses "a=1,b=2" and checks every key is allowed.
+std::map<std::string, std::string> parse_keys(std::string_view text, std::string_view field,
+                                              const std::vector<std::string>& allowed) {
+  std::map<std::string, std::string> keys;
+  std::string expected;
+  for (const auto& key : allowed) expected += (expected.empty() ? "" : ", ") + key;
+  std::size_t start = 0;
+  while (start <= text.size() && !text.empty()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string_view item =
+        trim(text.substr(start, comma == std::string_view::npos ? text.size() - start : comma - start));
+    const std::size_t equals = item.find('=');
+    if (item.empty() || equals == std::string_view::npos) {
+      fail(field, "expected key=value, got '" + std::string(item) + "' (keys: " + expected + ")");
+    }
+    const std::string key(trim(item.substr(0, equals)));
+    bool known = false;
+    for (const auto& candidate : allowed) known = known || candidate == key;
+    if (!known) fail(field, "unknown key '" + key + "' (expected one of: " + expected + ")");
+    if (keys.contains(key)) fail(field, "key '" + key + "' given twice");
+    keys[key] = std::string(trim(item.substr(equals + 1)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return keys;
+}
+
+double key_quantity(const std::map<std::string, std::string>& keys, const std::string& key,
+                    Quantity quantity, std::string_view field, std::optional<double> fallback = {}) {
+  const auto it = keys.find(key);
+  if (it == keys.end()) {
+    if (fallback) return *fallback;
+    fail(field, "missing key '" + key + "'");
+  }
+  return parse_quantity(it->second, quantity, std::string(field) + " " + key);
+}
+
+void require_kind_argument(const KindSpec& spec, std::string_view field, const std::string& form) {
+  if (spec.argument.empty()) fail(field, "expected " + form);
+}
+
+}  // namespace
+
+double parse_quantity(std::string_view text, Quantity quantity, std::string_view field) {
+  text = trim(text);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  const std::string_view unit = trim(std::string_view(end, static_cast<std::size_t>(text.data() + text.size() - end)));
+  const char* form = quantity == Quantity::length ? "a length such as 10mm, 0.01 or 250um"
+                     : quantity == Quantity::time ? "a duration such as 5ms, 0.005 or 800us"
+                                                  : "a number";
+  if (error != std::errc() || text.empty() || !std::isfinite(value)) {
+    fail(field, "expected " + std::string(form) + ", got '" + std::string(text) + "'");
+  }
+  double scale = 1.0;
+  if (unit.empty()) {
+    scale = 1.0;
+  } else if (quantity == Quantity::length && unit == "m") {
+    scale = 1.0;
+  } else if (quantity == Quantity::length && unit == "mm") {
+    scale = 1e-3;
+  } else if (quantity == Quantity::length && unit == "um") {
+    scale = 1e-6;
+  } else if (quantity == Quantity::time && unit == "s") {
+    scale = 1.0;
+  } else if (quantity == Quantity::time && unit == "ms") {
+    scale = 1e-3;
+  } else if (quantity == Quantity::time && unit == "us") {
+    scale = 1e-6;
+  } else {
+    fail(field, "expected " + std::string(form) + ", got unit '" + std::string(unit) + "'");
+  }
+  return value * scale;
+}
+
+netmc::v1::Trajectory parse_trajectory(std::string_view text) {
+  constexpr std::string_view field = "--trajectory";
+  KindSpec spec = split_kind(text);
+  netmc::v1::Trajectory out;
+  if (spec.kind == "circle") {
+    const auto keys = parse_keys(spec.argument, field,
+                                 {"r", "cx", "cy", "period", "start", "cw", "revolutions"});
+    auto& c = *out.mutable_circle();
+    c.set_radius_m(key_quantity(keys, "r", Quantity::length, field));
+    c.set_center_x_m(key_quantity(keys, "cx", Quantity::length, field, 0.0));
+    c.set_center_y_m(key_quantity(keys, "cy", Quantity::length, field, 0.0));
+    c.set_period_s(key_quantity(keys, "period", Quantity::time, field));
+    c.set_start_angle_rad(key_quantity(keys, "start", Quantity::plain, field, 0.0));
+    c.set_clockwise(key_quantity(keys, "cw", Quantity::plain, field, 0.0) != 0.0);
+    c.set_revolutions(key_quantity(keys, "revolutions", Quantity::plain, field, 1.0));
+  } else if (spec.kind == "ellipse") {
+    const auto keys = parse_keys(spec.argument, field,
+                                 {"a", "b", "cx", "cy", "period", "start", "cw", "revolutions"});
+    auto& e = *out.mutable_ellipse();
+    e.set_semi_axis_x_m(key_quantity(keys, "a", Quantity::length, field));
+    e.set_semi_axis_y_m(key_quantity(keys, "b", Quantity::length, field));
+    e.set_center_x_m(key_quantity(keys, "cx", Quantity::length, field, 0.0));
+    e.set_center_y_m(key_quantity(keys, "cy", Quantity::length, field, 0.0));
+    e.set_period_s(key_quantity(keys, "period", Quantity::time, field));
+    e.set_start_angle_rad(key_quantity(keys, "start", Quantity::plain, field, 0.0));
+    e.set_clockwise(key_quantity(keys, "cw", Quantity::plain, field, 0.0) != 0.0);
+    e.set_revolutions(key_quantity(keys, "revolutions", Quantity::plain, field, 1.0));
+  } else if (spec.kind == "line") {
+    const auto keys = parse_keys(spec.argument, field, {"x0", "y0", "x1", "y1", "duration"});
+    auto& l = *out.mutable_line();
+    l.set_x0_m(key_quantity(keys, "x0", Quantity::length, field));
+    l.set_y0_m(key_quantity(keys, "y0", Quantity::length, field));
+    l.set_x1_m(key_quantity(keys, "x1", Quantity::length, field));
+    l.set_y1_m(key_quantity(keys, "y1", Quantity::length, field));
+    l.set_duration_s(key_quantity(keys, "duration", Quantity::time, field));
+  } else {
+    fail(field, "unknown shape '" + spec.kind +
+                    "' (expected circle:r=..,cx=..,cy=..,period=.., ellipse:a=..,b=..,cx=..,cy=..,"
+                    "period=.. or line:x0=..,y0=..,x1=..,y1=..,duration=..)");
+  }
+  return out;
+}
+
+netmc::v1::DelayProfile parse_delay(std::string_view text, std::string_view flag) {
+  KindSpec spec = split_kind(text);
+  netmc::v1::DelayProfile out;
+  const auto range = [&](const std::string& value, const std::string& key,
+                         netmc::v1::UniformDelay& target) {
+    const std::size_t dots = value.find("..");
+    if (dots == std::string::npos) {
+      fail(flag, "key '" + key + "' expects a range MIN..MAX such as 0.3ms..0.8ms, got '" + value + "'");
+    }
+    target.set_min_s(parse_quantity(value.substr(0, dots), Quantity::time, std::string(flag) + " " + key));
+    target.set_max_s(parse_quantity(value.substr(dots + 2), Quantity::time, std::string(flag) + " " + key));
+  };
+  if (spec.kind == "none") {
+    out.mutable_none();
+  } else if (spec.kind == "constant") {
+    require_kind_argument(spec, flag, "constant:DURATION such as constant:1ms");
+    out.set_constant_s(parse_quantity(spec.argument, Quantity::time, flag));
+  } else if (spec.kind == "uniform") {
+    const auto keys = parse_keys(spec.argument, flag, {"min", "max"});
+    out.mutable_uniform()->set_min_s(key_quantity(keys, "min", Quantity::time, flag));
+    out.mutable_uniform()->set_max_s(key_quantity(keys, "max", Quantity::time, flag));
+  } else if (spec.kind == "normal") {
+    const auto keys = parse_keys(spec.argument, flag, {"mean", "sd", "min", "max"});
+    auto& n = *out.mutable_normal();
+    n.set_mean_s(key_quantity(keys, "mean", Quantity::time, flag));
+    n.set_stddev_s(key_quantity(keys, "sd", Quantity::time, flag));
+    n.set_min_s(key_quantity(keys, "min", Quantity::time, flag, 0.0));
+    n.set_max_s(key_quantity(keys, "max", Quantity::time, flag, 0.0));
+  } else if (spec.kind == "pareto") {
+    const auto keys = parse_keys(spec.argument, flag, {"scale", "shape", "max"});
+    auto& p = *out.mutable_pareto();
+    p.set_scale_s(key_quantity(keys, "scale", Quantity::time, flag));
+    p.set_shape(key_quantity(keys, "shape", Quantity::plain, flag));
+    p.set_max_s(key_quantity(keys, "max", Quantity::time, flag, 0.0));
+  } else if (spec.kind == "markov") {
+    const auto keys = parse_keys(spec.argument, flag, {"good", "bad", "p_gb", "p_bg"});
+    auto& m = *out.mutable_markov();
+    if (!keys.contains("good") || !keys.contains("bad")) {
+      fail(flag, "markov expects good=MIN..MAX,bad=MIN..MAX,p_gb=P,p_bg=P");
+    }
+    range(keys.at("good"), "good", *m.mutable_good());
+    range(keys.at("bad"), "bad", *m.mutable_bad());
+    m.set_p_good_to_bad(key_quantity(keys, "p_gb", Quantity::plain, flag));
+    m.set_p_bad_to_good(key_quantity(keys, "p_bg", Quantity::plain, flag));
+  } else if (spec.kind == "trace") {
+    require_kind_argument(spec, flag, "trace:FILE.csv");
+    out.mutable_trace()->set_path(spec.argument);
+  } else {
+    fail(flag, "unknown delay '" + spec.kind +
+                   "' (expected none, constant:D, uniform:min=..,max=.., normal:mean=..,sd=.., "
+                   "pareto:scale=..,shape=.., markov:good=..,bad=..,p_gb=..,p_bg=.. or trace:FILE)");
+  }
+  return out;
+}
+
+netmc::v1::LossProfile parse_loss(std::string_view text, std::string_view flag) {
+  KindSpec spec = split_kind(text);
+  netmc::v1::LossProfile out;
+  if (spec.kind == "none") {
+    return out;
+  } else if (spec.kind == "bernoulli") {
+    const auto keys = parse_keys(spec.argument, flag, {"p"});
+    out.mutable_bernoulli()->set_p(key_quantity(keys, "p", Quantity::plain, flag));
+  } else if (spec.kind == "gilbert") {
+    const auto keys = parse_keys(spec.argument, flag, {"p_gb", "p_bg", "good", "bad"});
+    auto& g = *out.mutable_gilbert_elliott();
+    g.set_p_good_to_bad(key_quantity(keys, "p_gb", Quantity::plain, flag));
+    g.set_p_bad_to_good(key_quantity(keys, "p_bg", Quantity::plain, flag));
+    g.set_loss_in_good(key_quantity(keys, "good", Quantity::plain, flag, 0.0));
+    g.set_loss_in_bad(key_quantity(keys, "bad", Quantity::plain, flag, 1.0));
+  } else {
+    fail(flag, "unknown loss '" + spec.kind +
+                   "' (expected none, bernoulli:p=P or gilbert:p_gb=..,p_bg=..[,good=..,bad=..])");
+  }
+  return out;
+}
+
+void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains) {
+  constexpr std::string_view flag = "--adrc";
+  const auto keys = parse_keys(text, flag, {"r0", "w0", "b0", "kp", "kd", "observer", "observer_input"});
+  for (const auto& [key, value] : keys) {
+    if (key == "observer") {
+      if (value != "euler" && value != "zoh") fail(flag, "observer expects euler or zoh, got '" + value + "'");
+      gains.set_observer(value);
+    } else if (key == "observer_input") {
+      if (value != "own" && value != "sent") fail(flag, "observer_input expects own or sent, got '" + value + "'");
+      gains.set_observer_sees_sent_command(value == "sent");
+    } else {
+      const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
+      if (key == "r0") gains.set_r0(number);
+      if (key == "w0") gains.set_w0(number);
+      if (key == "b0") gains.set_b0(number);
+      if (key == "kp") gains.set_kp(number);
+      if (key == "kd") gains.set_kd(number);
+    }
+  }
+}
+
+void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains) {
+  constexpr std::string_view flag = "--ilc";
+  const auto keys = parse_keys(text, flag, {"kcp", "kcd", "forgetting", "q", "lead"});
+  for (const auto& [key, value] : keys) {
+    const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
+    if (key == "kcp") gains.set_kcp(number);
+    if (key == "kcd") gains.set_kcd(number);
+    if (key == "forgetting") gains.set_forgetting(number);
+    if (key == "q") gains.set_q_cutoff_hz(number);
+    if (key == "lead") {
+      if (number < 0 || number != std::floor(number) || number > 1e6) {
+        fail(flag, "lead expects a whole number of samples, got '" + value + "'");
+      }
+      gains.set_lead_samples(static_cast<std::uint32_t>(number));
+    }
+  }
+}
+
+void parse_pid_gains(std::string_view text, netmc::v1::PidGains& gains, std::string_view flag) {
+  const auto keys = parse_keys(text, flag, {"kp", "ki", "kd"});
+  for (const auto& [key, value] : keys) {
+    const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
+    if (key == "kp") gains.set_kp(number);
+    if (key == "ki") gains.set_ki(number);
+    if (key == "kd") gains.set_kd(number);
+  }
+}
+
+}  // namespace netmc::cli

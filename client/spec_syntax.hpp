@@ -1,0 +1,34 @@
+#pragma once
+// The compact flag syntax of the CLI: `kind:key=value,...` with unit-suffixed quantities
+// (SI unless a suffix s, ms, us, m, mm, um is given). Errors are std::invalid_argument naming
+// the flag and the expected form.
+
+#include <string>
+#include <string_view>
+
+#include "idl/job.pb.h"
+
+namespace netmc::cli {
+
+enum class Quantity { length, time, plain };
+
+// "10mm" -> 0.01 (length), "0.5ms" -> 5e-4 (time), "3" -> 3 (SI). `field` names the flag/key.
+double parse_quantity(std::string_view text, Quantity quantity, std::string_view field);
+
+// --trajectory circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=..
+//              | line:x0=..,y0=..,x1=..,y1=..,duration=..
+netmc::v1::Trajectory parse_trajectory(std::string_view text);
+// --delay none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=..[,min=..,max=..]
+//         | pareto:scale=..,shape=..[,max=..] | markov:good=0.3ms..0.8ms,bad=5ms..10ms,p_gb=..,p_bg=..
+//         | trace:FILE.csv
+netmc::v1::DelayProfile parse_delay(std::string_view text, std::string_view flag);
+// --loss none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]
+netmc::v1::LossProfile parse_loss(std::string_view text, std::string_view flag);
+// --adrc r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent
+void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains);
+// --ilc kcp=..,kcd=..,forgetting=..,q=..(Hz),lead=..(samples)
+void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains);
+// --pidccc / --pid kp=..,ki=..,kd=..
+void parse_pid_gains(std::string_view text, netmc::v1::PidGains& gains, std::string_view flag);
+
+}  // namespace netmc::cli

@@ -1,0 +1,138 @@
+#include "client/study_report.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "server/job/job_builder.hpp"
+
+namespace netmc::cli {
+namespace {
+
+const netmc::v1::IterationMetrics& last(const RunOutcome& outcome) {
+  return outcome.result.iterations(outcome.result.iterations_size() - 1);
+}
+
+const PaperRow* paper_row(const StudyPlan& plan, const std::string& controller) {
+  for (const auto& row : plan.paper) {
+    if (row.controller == controller) return &row;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+void print_study_table(std::ostream& out, const StudyPlan& plan,
+                       const std::vector<RunOutcome>& outcomes) {
+  if (outcomes.empty()) return;
+  const auto& first = outcomes.front().result;
+  fmt::print(out, "{}\n", plan.title);
+  fmt::print(out, "trajectory {} | plant {} | delay {} | h = {} ms | {} iterations | seed {}\n\n",
+             first.trajectory(), first.plant(), first.delay(), first.sample_period_s() * 1e3,
+             first.iterations_size(), first.seed());
+  const bool with_paper = !plan.paper.empty();
+  fmt::print(out, "{:<18} {:>11} {:>11} {:>11} {:>9} {:>9}  {:>22}", "run", "e_max [mm]",
+             "e_sum [mm]", "e_rms [um]", "e_max/ref", "e_sum/ref", "tau mean/p99/max [ms]");
+  if (with_paper) fmt::print(out, "  {:>12} {:>12}", "paper e_max", "paper e_sum");
+  fmt::print(out, "\n");
+  const auto& reference = last(outcomes.front());
+  for (const auto& outcome : outcomes) {
+    const auto& m = last(outcome);
+    fmt::print(out, "{:<18} {:>11.4f} {:>11.3f} {:>11.2f} {:>9.3f} {:>9.3f}  {:>6.3f}/{:>6.3f}/{:>6.3f}",
+               outcome.result.label(), m.e_max_m() * 1e3, m.e_sum_m() * 1e3,
+               m.e_rms_m() * 1e6, m.e_max_m() / reference.e_max_m(),
+               m.e_sum_m() / reference.e_sum_m(), m.tau_mean_s() * 1e3, m.tau_p99_s() * 1e3,
+               m.tau_max_s() * 1e3);
+    if (with_paper) {
+      if (const PaperRow* row = paper_row(plan, outcome.result.controller())) {
+        fmt::print(out, "  {:>12.4f} {:>12.4f}", row->e_max_m * 1e3, row->e_sum_m * 1e3);
+      }
+    }
+    fmt::print(out, "\n");
+  }
+  fmt::print(out, "\nlast iteration of each run; ratios against the first row ({})", outcomes.front().result.label());
+  if (with_paper) {
+    const auto* adrc = paper_row(plan, outcomes.front().result.controller());
+    const auto* best = &plan.paper.back();
+    if (adrc) {
+      fmt::print(out, "; {}: {} e_max/ref {:.3f}, e_sum/ref {:.3f}", plan.paper_source,
+                 best->controller, best->e_max_m / adrc->e_max_m, best->e_sum_m / adrc->e_sum_m);
+    }
+  }
+  fmt::print(out, "\n");
+}
+
+void print_learning_curve(std::ostream& out, const std::vector<RunOutcome>& outcomes) {
+  for (const auto& outcome : outcomes) {
+    if (outcome.result.iterations_size() < 2) continue;
+    fmt::print(out, "\n{}: e_sum [mm] by iteration\n", outcome.result.label());
+    for (const auto& m : outcome.result.iterations()) {
+      fmt::print(out, "  {:>3}  e_sum {:>9.3f}  e_max {:>8.4f}\n", m.iteration(),
+                 m.e_sum_m() * 1e3, m.e_max_m() * 1e3);
+    }
+  }
+}
+
+std::string study_json(const std::vector<RunOutcome>& outcomes) {
+  netmc::v1::StudyResult study;
+  for (const auto& outcome : outcomes) *study.add_runs() = outcome.result;
+  return job::to_json(study);
+}
+
+std::string trace_csv(const std::vector<sim::CycleTrace>& trace) {
+  std::string csv =
+      "time_s,x_ref_m,y_ref_m,x_m,y_m,x_measured_m,y_measured_m,contour_error_m,"
+      "contour_error_estimate_m,ux,uy,Ux,Uy,ue,tau_x_s\n";
+  for (const auto& row : trace) {
+    csv += fmt::format("{:.6f},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},"
+                       "{:.6e},{:.6e},{:.6e},{:.6e}\n",
+                       row.time_s, row.reference_m[0], row.reference_m[1], row.position_m[0],
+                       row.position_m[1], row.measured_m[0], row.measured_m[1],
+                       row.contour_error_m, row.contour_error_estimate_m, row.axis_command[0],
+                       row.axis_command[1], row.command[0], row.command[1],
+                       row.coupling_command, row.tau_s);
+  }
+  return csv;
+}
+
+void write_file_atomically(const std::string& path, const std::string& content) {
+  const std::filesystem::path target(path);
+  const std::filesystem::path temporary = target.string() + ".partial";
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    if (!file) throw std::runtime_error(path + ": cannot open for writing");
+    file << content;
+    file.close();
+    if (!file) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw std::runtime_error(path + ": write failed");
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, target, error);
+  if (error) {
+    std::filesystem::remove(temporary, error);
+    throw std::runtime_error(path + ": cannot rename into place");
+  }
+}
+
+void write_trace_directory(const std::string& directory, const std::vector<RunOutcome>& outcomes) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error || !std::filesystem::is_directory(directory)) {
+    throw std::runtime_error(directory + ": cannot create the trace directory");
+  }
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    std::string name = outcomes[i].result.label();
+    std::replace(name.begin(), name.end(), '+', '_');
+    write_file_atomically((std::filesystem::path(directory) / fmt::format("{}-{}.csv", i + 1, name)).string(),
+                          trace_csv(outcomes[i].last_trace));
+  }
+}
+
+}  // namespace netmc::cli

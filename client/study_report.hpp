@@ -1,0 +1,26 @@
+#pragma once
+// Human and machine outputs of a study: the comparison table, the JSON results and the
+// per-cycle CSV traces. Files are written whole or not at all (temporary file, then rename).
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "client/presets.hpp"
+#include "client/study_runner.hpp"
+
+namespace netmc::cli {
+
+void print_study_table(std::ostream& out, const StudyPlan& plan,
+                       const std::vector<RunOutcome>& outcomes);
+void print_learning_curve(std::ostream& out, const std::vector<RunOutcome>& outcomes);
+
+std::string study_json(const std::vector<RunOutcome>& outcomes);
+std::string trace_csv(const std::vector<sim::CycleTrace>& trace);
+
+// Writes `content` to `path` atomically; throws std::runtime_error naming the path.
+void write_file_atomically(const std::string& path, const std::string& content);
+// One CSV per run: DIR/<index>-<controller>.csv; the directory is created if needed.
+void write_trace_directory(const std::string& directory, const std::vector<RunOutcome>& outcomes);
+
+}  // namespace netmc::cli

@@ -1,0 +1,64 @@
+#include "client/study_runner.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <thread>
+
+#include "server/job/job_builder.hpp"
+#include "server/sim/contour_job_runner.hpp"
+
+namespace netmc::cli {
+
+std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_traces,
+                                             unsigned worker_threads) {
+  std::vector<sim::ContourJob> jobs;
+  for (std::size_t i = 0; i < plan.jobs.size(); ++i) {
+    sim::ContourJob job = job::build_contour_job(plan.jobs[i]);
+    job.record_traces = record_traces;
+    jobs.push_back(std::move(job));
+  }
+
+  std::vector<RunOutcome> outcomes(jobs.size());
+  std::vector<std::exception_ptr> errors(jobs.size());
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t i = next++; i < jobs.size(); i = next++) {
+      try {
+        const auto& spec = plan.jobs[i];
+        sim::ContourJobRunner runner(std::move(jobs[i]));
+        RunOutcome& out = outcomes[i];
+        out.result.set_controller(spec.controller().name());
+        out.result.set_label(spec.name().empty() ? spec.controller().name() : spec.name());
+        out.result.set_plant(spec.plant());
+        out.result.set_trajectory(job::describe_trajectory(spec.trajectory()));
+        std::string delay = job::describe_link(spec.downlink());
+        if (spec.uplink().has_delay() || spec.uplink().has_loss()) {
+          delay = "up: " + job::describe_link(spec.uplink()) + "; down: " + delay;
+        }
+        out.result.set_delay(delay);
+        out.result.set_controller_detail(runner.controller_description());
+        out.result.set_sample_period_s(spec.sample_period_s());
+        out.result.set_seed(spec.seed());
+        runner.run_all([&](const sim::IterationRecord& record) {
+          *out.result.add_iterations() = job::to_proto(record.metrics);
+          if (record_traces) out.last_trace = record.trace;
+        });
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  const unsigned threads = std::max(1u, std::min<unsigned>(worker_threads,
+                                                           static_cast<unsigned>(jobs.size())));
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (auto& thread : pool) thread.join();
+  for (const auto& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  return outcomes;
+}
+
+}  // namespace netmc::cli

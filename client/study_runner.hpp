@@ -1,0 +1,21 @@
+#pragma once
+// Runs the jobs of a study in-process (virtual time), one worker thread per core.
+
+#include <functional>
+#include <vector>
+
+#include "client/presets.hpp"
+#include "server/sim/iteration_metrics.hpp"
+
+namespace netmc::cli {
+
+struct RunOutcome {
+  netmc::v1::RunResult result;
+  std::vector<sim::CycleTrace> last_trace;   // per-cycle trace of the last iteration (if asked)
+};
+
+// Builds every job first, so a bad spec fails before anything runs (std::invalid_argument).
+std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_traces,
+                                             unsigned worker_threads);
+
+}  // namespace netmc::cli

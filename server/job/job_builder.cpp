@@ -1,0 +1,299 @@
+#include "server/job/job_builder.hpp"
+
+#include <google/protobuf/util/json_util.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "control/circle_trajectory.hpp"
+#include "control/ellipse_trajectory.hpp"
+#include "control/line_trajectory.hpp"
+#include "plant/plant_catalog.hpp"
+
+namespace netmc::job {
+namespace {
+
+using netmc::v1::DelayProfile;
+using netmc::v1::LossProfile;
+
+std::shared_ptr<const control::ReferenceTrajectory> build_trajectory(
+    const netmc::v1::Trajectory& t) {
+  switch (t.shape_case()) {
+    case netmc::v1::Trajectory::kCircle: {
+      const auto& c = t.circle();
+      control::CircleParameters p;
+      p.center = {c.center_x_m(), c.center_y_m()};
+      p.radius_m = c.radius_m();
+      p.period_s = c.period_s();
+      p.start_angle_rad = c.start_angle_rad();
+      p.clockwise = c.clockwise();
+      p.revolutions = c.revolutions() == 0.0 ? 1.0 : c.revolutions();
+      return std::make_shared<control::CircleTrajectory>(p);
+    }
+    case netmc::v1::Trajectory::kEllipse: {
+      const auto& e = t.ellipse();
+      control::EllipseParameters p;
+      p.center = {e.center_x_m(), e.center_y_m()};
+      p.semi_axis_x_m = e.semi_axis_x_m();
+      p.semi_axis_y_m = e.semi_axis_y_m();
+      p.period_s = e.period_s();
+      p.start_angle_rad = e.start_angle_rad();
+      p.clockwise = e.clockwise();
+      p.revolutions = e.revolutions() == 0.0 ? 1.0 : e.revolutions();
+      return std::make_shared<control::EllipseTrajectory>(p);
+    }
+    case netmc::v1::Trajectory::kLine: {
+      const auto& l = t.line();
+      control::LineParameters p;
+      p.start = {l.x0_m(), l.y0_m()};
+      p.end = {l.x1_m(), l.y1_m()};
+      p.duration_s = l.duration_s();
+      return std::make_shared<control::LineTrajectory>(p);
+    }
+    case netmc::v1::Trajectory::SHAPE_NOT_SET:
+      break;
+  }
+  throw std::invalid_argument("trajectory: missing (expected circle, ellipse or line)");
+}
+
+std::unique_ptr<netsim::DelayModel> build_delay(const DelayProfile& d) {
+  switch (d.kind_case()) {
+    case DelayProfile::KIND_NOT_SET:
+    case DelayProfile::kNone:
+      return netsim::make_no_delay();
+    case DelayProfile::kConstantS:
+      return netsim::make_constant_delay(d.constant_s());
+    case DelayProfile::kUniform:
+      return netsim::make_uniform_delay(d.uniform().min_s(), d.uniform().max_s());
+    case DelayProfile::kNormal: {
+      const auto& n = d.normal();
+      const double max_s = n.max_s() > 0.0 ? n.max_s() : n.mean_s() + 6.0 * n.stddev_s();
+      return netsim::make_truncated_normal_delay(n.mean_s(), n.stddev_s(), n.min_s(), max_s);
+    }
+    case DelayProfile::kPareto: {
+      const auto& p = d.pareto();
+      const double max_s = p.max_s() > 0.0 ? p.max_s() : std::numeric_limits<double>::infinity();
+      return netsim::make_pareto_delay(p.scale_s(), p.shape(), max_s);
+    }
+    case DelayProfile::kMarkov: {
+      const auto& m = d.markov();
+      return netsim::make_markov_delay(
+          netsim::make_uniform_delay(m.good().min_s(), m.good().max_s()),
+          netsim::make_uniform_delay(m.bad().min_s(), m.bad().max_s()), m.p_good_to_bad(),
+          m.p_bad_to_good());
+    }
+    case DelayProfile::kTrace: {
+      const auto& t = d.trace();
+      if (t.delays_s_size() > 0) {
+        return netsim::make_trace_delay({t.delays_s().begin(), t.delays_s().end()});
+      }
+      if (t.path().empty()) {
+        throw std::invalid_argument("delay trace: expected a CSV file path or delays_s values");
+      }
+      return netsim::make_trace_delay(netsim::load_delay_trace_csv(t.path()));
+    }
+  }
+  throw std::invalid_argument("delay: unknown kind");
+}
+
+std::unique_ptr<netsim::LossModel> build_loss(const LossProfile& l) {
+  switch (l.kind_case()) {
+    case LossProfile::KIND_NOT_SET:
+      return netsim::make_no_loss();
+    case LossProfile::kBernoulli:
+      return netsim::make_bernoulli_loss(l.bernoulli().p());
+    case LossProfile::kGilbertElliott: {
+      const auto& g = l.gilbert_elliott();
+      return netsim::make_gilbert_elliott_loss(g.p_good_to_bad(), g.p_bad_to_good(),
+                                               g.loss_in_good(), g.loss_in_bad());
+    }
+  }
+  throw std::invalid_argument("loss: unknown kind");
+}
+
+// Prefix the field path onto errors thrown by the libraries.
+template <typename Build>
+auto in_field(const std::string& field, Build&& build) {
+  try {
+    return build();
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(field + ": " + error.what());
+  }
+}
+
+sim::LinkProfile build_link(const netmc::v1::LinkProfile& link, const std::string& field) {
+  sim::LinkProfile out;
+  out.delay = in_field(field + ".delay", [&] { return build_delay(link.delay()); });
+  out.loss = in_field(field + ".loss", [&] { return build_loss(link.loss()); });
+  return out;
+}
+
+control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
+  control::ControllerSettings s;
+  const auto& a = c.adrc();
+  if (a.has_r0()) s.adrc.td_speed_factor = a.r0();
+  if (a.has_w0()) s.adrc.observer_bandwidth = a.w0();
+  if (a.has_b0()) s.adrc.input_gain = a.b0();
+  if (a.has_kp()) s.adrc.kp = a.kp();
+  if (a.has_kd()) s.adrc.kd = a.kd();
+  if (a.observer() == "zoh") {
+    s.adrc.observer_discretization = control::Discretization::zero_order_hold;
+  } else if (!a.observer().empty() && a.observer() != "euler") {
+    throw std::invalid_argument("controller.adrc.observer: expected 'euler' or 'zoh', got '" +
+                                a.observer() + "'");
+  }
+  s.adrc.observer_sees_sent_command = a.observer_sees_sent_command();
+  if (c.pid().has_kp()) s.pid.kp = c.pid().kp();
+  if (c.pid().has_ki()) s.pid.ki = c.pid().ki();
+  if (c.pid().has_kd()) s.pid.kd = c.pid().kd();
+  if (c.pidccc().has_kp()) s.pidccc.kp = c.pidccc().kp();
+  if (c.pidccc().has_ki()) s.pidccc.ki = c.pidccc().ki();
+  if (c.pidccc().has_kd()) s.pidccc.kd = c.pidccc().kd();
+  const auto& i = c.ilccc();
+  if (i.has_kcp()) s.ilccc.kcp = i.kcp();
+  if (i.has_kcd()) s.ilccc.kcd = i.kcd();
+  if (i.has_forgetting()) s.ilccc.forgetting = i.forgetting();
+  if (i.has_q_cutoff_hz()) s.ilccc.q_cutoff_hz = i.q_cutoff_hz();
+  if (i.has_lead_samples()) s.ilccc.lead_samples = i.lead_samples();
+  if (!c.estimator().empty()) s.estimator = c.estimator();
+  return s;
+}
+
+std::string format_seconds(double seconds) {
+  std::ostringstream text;
+  if (seconds >= 1.0 || seconds == 0.0) {
+    text << seconds << " s";
+  } else if (seconds >= 1e-3) {
+    text << seconds * 1e3 << " ms";
+  } else {
+    text << seconds * 1e6 << " us";
+  }
+  return text.str();
+}
+
+}  // namespace
+
+void apply_defaults(netmc::v1::JobSpec& spec) {
+  if (spec.plant().empty()) spec.set_plant("seed001");
+  if (spec.controller().name().empty()) spec.mutable_controller()->set_name("adrc+ilccc");
+  if (spec.sample_period_s() == 0.0) spec.set_sample_period_s(0.005);
+  if (spec.iterations() == 0) spec.set_iterations(1);
+  if (spec.seed() == 0) spec.set_seed(1);
+}
+
+sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
+  sim::ContourJob job;
+  job.trajectory = in_field("trajectory", [&] { return build_trajectory(spec.trajectory()); });
+  job.plant_name = spec.plant();
+  auto plants = in_field("plant", [&] { return plant::make_plant_set(spec.plant(), 2); });
+  for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
+  job.controller_name = spec.controller().name();
+  job.controller = in_field("controller", [&] { return build_settings(spec.controller()); });
+  job.uplink = build_link(spec.uplink(), "uplink");
+  job.downlink = build_link(spec.downlink(), "downlink");
+  job.sensor.resolution_m = spec.sensor().resolution_m();
+  job.sensor.noise_stddev_m = spec.sensor().noise_stddev_m();
+  job.sample_period_s = spec.sample_period_s();
+  job.duration_s = spec.duration_s();
+  job.iterations = spec.iterations();
+  job.seed = spec.seed();
+  job.deadline_s = spec.deadline_s();
+  job.compute_delay_s = spec.compute_delay_s();
+  if (spec.command_limit() != 0.0) job.command_limit = spec.command_limit();
+  job.validate();
+  // Construct the controller once here so a bad name or gain is reported before anything runs.
+  in_field("controller", [&] {
+    return control::make_contouring_controller(job.controller_name, job.controller,
+                                               job.sample_period_s)
+        .describe();
+  });
+  return job;
+}
+
+std::string describe_trajectory(const netmc::v1::Trajectory& trajectory) {
+  return build_trajectory(trajectory)->describe();
+}
+
+std::string describe_link(const netmc::v1::LinkProfile& link) {
+  const auto& d = link.delay();
+  std::string text;
+  switch (d.kind_case()) {
+    case DelayProfile::KIND_NOT_SET:
+    case DelayProfile::kNone: text = "none"; break;
+    case DelayProfile::kConstantS: text = "constant " + format_seconds(d.constant_s()); break;
+    case DelayProfile::kUniform:
+      text = "uniform " + format_seconds(d.uniform().min_s()) + ".." +
+             format_seconds(d.uniform().max_s());
+      break;
+    case DelayProfile::kNormal:
+      text = "normal mean " + format_seconds(d.normal().mean_s()) + " sd " +
+             format_seconds(d.normal().stddev_s());
+      break;
+    case DelayProfile::kPareto:
+      text = "pareto scale " + format_seconds(d.pareto().scale_s()) + " shape " +
+             std::to_string(d.pareto().shape());
+      break;
+    case DelayProfile::kMarkov:
+      text = "markov good " + format_seconds(d.markov().good().max_s()) + " bad " +
+             format_seconds(d.markov().bad().max_s());
+      break;
+    case DelayProfile::kTrace:
+      text = "trace " + (d.trace().path().empty() ? std::string("(inline)") : d.trace().path());
+      break;
+  }
+  if (link.loss().kind_case() == LossProfile::kBernoulli) {
+    text += ", loss " + std::to_string(link.loss().bernoulli().p());
+  } else if (link.loss().kind_case() == LossProfile::kGilbertElliott) {
+    text += ", bursty loss";
+  }
+  return text;
+}
+
+netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
+  netmc::v1::IterationMetrics out;
+  out.set_iteration(static_cast<std::uint32_t>(m.iteration));
+  out.set_e_max_m(m.e_max_m);
+  out.set_e_rms_m(m.e_rms_m);
+  out.set_e_sum_m(m.e_sum_m);
+  out.set_tau_mean_s(m.tau_mean_s);
+  out.set_tau_p99_s(m.tau_p99_s);
+  out.set_tau_max_s(m.tau_max_s);
+  out.set_tau_sc_mean_s(m.tau_sc_mean_s);
+  out.set_tau_ca_mean_s(m.tau_ca_mean_s);
+  for (std::size_t axis = 0; axis < 2; ++axis) {
+    out.add_tracking_rms_m(m.tracking_rms_m[axis]);
+    out.add_tracking_max_m(m.tracking_max_m[axis]);
+    out.add_command_rms(m.command_rms[axis]);
+  }
+  out.set_deadline_misses(static_cast<std::uint32_t>(m.deadline_misses));
+  out.set_lost_feedback(static_cast<std::uint32_t>(m.lost_feedback));
+  out.set_lost_setpoints(static_cast<std::uint32_t>(m.lost_setpoints));
+  out.set_stale_setpoints(static_cast<std::uint32_t>(m.stale_setpoints));
+  return out;
+}
+
+netmc::v1::JobSpec parse_job_spec_json(const std::string& json, const std::string& origin) {
+  netmc::v1::JobSpec spec;
+  google::protobuf::util::JsonParseOptions options;
+  options.ignore_unknown_fields = false;
+  const auto status = google::protobuf::util::JsonStringToMessage(json, &spec, options);
+  if (!status.ok()) {
+    throw std::invalid_argument(origin + ": not a valid job spec: " +
+                                std::string(status.message()));
+  }
+  return spec;
+}
+
+std::string to_json(const google::protobuf::Message& message) {
+  google::protobuf::util::JsonPrintOptions options;
+  options.preserve_proto_field_names = true;
+  options.add_whitespace = true;
+  options.always_print_primitive_fields = true;
+  std::string json;
+  const auto status = google::protobuf::util::MessageToJsonString(message, &json, options);
+  if (!status.ok()) throw std::runtime_error("json: " + std::string(status.message()));
+  return json;
+}
+
+}  // namespace netmc::job

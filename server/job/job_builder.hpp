@@ -1,0 +1,27 @@
+#pragma once
+// The edge between the control plane (protobuf JobSpec / RunResult) and the pure job runner.
+// Every field is checked here; errors are std::invalid_argument naming the field.
+
+#include <string>
+
+#include "idl/job.pb.h"
+#include "server/sim/contour_job.hpp"
+#include "server/sim/iteration_metrics.hpp"
+
+namespace netmc::job {
+
+// Fills the defaults of paper 001 where the spec leaves a field unset.
+void apply_defaults(netmc::v1::JobSpec& spec);
+// Builds the runnable job (loads delay trace files, validates every field).
+sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec);
+
+std::string describe_trajectory(const netmc::v1::Trajectory& trajectory);
+std::string describe_link(const netmc::v1::LinkProfile& link);
+
+netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& metrics);
+
+// JSON through protobuf's JSON mapping, field names as in job.proto.
+netmc::v1::JobSpec parse_job_spec_json(const std::string& json, const std::string& origin);
+std::string to_json(const google::protobuf::Message& message);
+
+}  // namespace netmc::job

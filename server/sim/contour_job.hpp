@@ -1,0 +1,53 @@
+#pragma once
+// A contouring job in plain C++ terms: what the job runner needs to run ILC iterations of one
+// controller on one plant set over one network profile. Built from the protobuf JobSpec at the
+// edge (server/job) so this layer stays free of protobuf and transport.
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "control/controller_catalog.hpp"
+#include "control/reference_trajectory.hpp"
+#include "netsim/delay_model.hpp"
+#include "netsim/loss_model.hpp"
+#include "plant/axis_plant.hpp"
+#include "plant/position_sensor.hpp"
+
+namespace netmc::sim {
+
+// One direction of the network between the server and every axis node (each axis gets its own
+// independently seeded copy).
+struct LinkProfile {
+  std::shared_ptr<const netsim::DelayModel> delay = netsim::make_no_delay();
+  std::shared_ptr<const netsim::LossModel> loss = netsim::make_no_loss();
+  std::string describe() const;
+};
+
+struct ContourJob {
+  std::shared_ptr<const control::ReferenceTrajectory> trajectory;
+  std::string plant_name;
+  std::vector<std::shared_ptr<const plant::AxisPlant>> axes;  // prototypes, x then y
+  std::string controller_name;
+  control::ControllerSettings controller;
+  LinkProfile uplink;     // sensor -> controller (tau_sc)
+  LinkProfile downlink;   // controller -> actuator (tau_ca)
+  plant::PositionSensorParameters sensor;
+  double sample_period_s = 0.005;
+  double duration_s = 0.0;             // 0: the trajectory's duration
+  std::size_t iterations = 1;
+  std::uint64_t seed = 1;
+  double deadline_s = 0.0;             // server waits this long for feedback; 0: one period
+  double compute_delay_s = 0.0;        // tau_cc in virtual time
+  double command_limit = std::numeric_limits<double>::infinity();  // |U| enforced at the axis
+  bool record_traces = false;
+
+  // Throws std::invalid_argument naming the field when the job cannot run.
+  void validate() const;
+  std::size_t cycles() const;          // samples k = 0..N, so N + 1
+  double deadline() const { return deadline_s > 0.0 ? deadline_s : sample_period_s; }
+};
+
+}  // namespace netmc::sim

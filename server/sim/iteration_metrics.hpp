@@ -1,0 +1,48 @@
+#pragma once
+// Per-iteration results of a contouring job (architecture.md, "Metrics"), SI units.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace netmc::sim {
+
+struct IterationMetrics {
+  std::size_t iteration = 0;             // 1-based
+  double e_max_m = 0.0;                  // max |eps| over the samples (exact contour error)
+  double e_rms_m = 0.0;
+  double e_sum_m = 0.0;                  // sum of |eps(k)| (paper 001's cumulative error)
+  std::array<double, 2> tracking_rms_m{};
+  std::array<double, 2> tracking_max_m{};
+  std::array<double, 2> command_rms{};
+  double tau_mean_s = 0.0;               // loop delay t_arrival(setpoint k) - t_k
+  double tau_p99_s = 0.0;
+  double tau_max_s = 0.0;
+  double tau_sc_mean_s = 0.0;            // sensor -> controller part
+  double tau_ca_mean_s = 0.0;            // controller -> actuator part
+  std::uint64_t deadline_misses = 0;     // cycles computed without fresh feedback of every axis
+  std::uint64_t lost_feedback = 0;
+  std::uint64_t lost_setpoints = 0;
+  std::uint64_t stale_setpoints = 0;     // arrived after a newer one, dropped
+};
+
+// One sample of a per-cycle trace (for --csv).
+struct CycleTrace {
+  double time_s = 0.0;
+  std::array<double, 2> reference_m{};
+  std::array<double, 2> position_m{};
+  std::array<double, 2> measured_m{};
+  double contour_error_m = 0.0;
+  double contour_error_estimate_m = 0.0;
+  std::array<double, 2> axis_command{};
+  std::array<double, 2> command{};
+  double coupling_command = 0.0;
+  double tau_s = -1.0;                   // of axis x; -1 when its setpoint was lost
+};
+
+struct IterationRecord {
+  IterationMetrics metrics;
+  std::vector<CycleTrace> trace;         // empty unless the job records traces
+};
+
+}  // namespace netmc::sim

@@ -1,0 +1,42 @@
+#pragma once
+// The axis-node side of one axis in virtual time: a plant, its position sensor, and the
+// event-driven actuator. A setpoint acts from the instant it arrives (paper 001, eq. 2/4: during
+// [t_k, t_k + tau) the previous input still acts); late setpoints older than the one in force are
+// dropped by sequence number; a lost setpoint leaves the last input in force.
+
+#include <memory>
+#include <vector>
+
+#include "netsim/delayed_channel.hpp"
+#include "netsim/freshness_filter.hpp"
+#include "plant/axis_plant.hpp"
+#include "plant/position_sensor.hpp"
+
+namespace netmc::sim {
+
+class SimulatedAxis {
+ public:
+  using Delivery = netsim::DelayedChannel<double>::Delivery;
+
+  SimulatedAxis(std::unique_ptr<plant::AxisPlant> plant, plant::PositionSensor sensor,
+                double command_limit);
+
+  void reset(double position);
+  double measure();                                  // sampled position at the current time
+  // Integrate to `end_time_s` applying the setpoints delivered in (now, end] in arrival order.
+  void advance_to(double end_time_s, const std::vector<Delivery>& deliveries);
+
+  const plant::AxisPlant& plant() const { return *plant_; }
+  double input() const { return input_; }
+  std::uint64_t stale_setpoints() const { return freshness_.stale_dropped(); }
+
+ private:
+  std::unique_ptr<plant::AxisPlant> plant_;
+  plant::PositionSensor sensor_;
+  netsim::FreshnessFilter freshness_;
+  double command_limit_;
+  double input_ = 0.0;
+  double time_s_ = 0.0;
+};
+
+}  // namespace netmc::sim

@@ -1,0 +1,119 @@
+// The virtual-time loop: delay accounting, long delays, reordering, loss, deadlines, determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "server/sim/contour_job_runner.hpp"
+#include "sim_test_support.hpp"
+
+namespace netmc::sim {
+namespace {
+
+using testing::small_circle_job;
+
+TEST(ContourJobRunner, WithoutNetworkEffectsEveryCommandActsAtItsSample) {
+  ContourJob job = small_circle_job();
+  job.record_traces = true;
+  ContourJobRunner runner(job);
+  const auto record = runner.run_iteration();
+  const auto& m = record.metrics;
+  EXPECT_EQ(record.trace.size(), 401u);  // 2 s at 5 ms, samples 0..400
+  EXPECT_EQ(m.tau_mean_s, 0.0);
+  EXPECT_EQ(m.tau_max_s, 0.0);
+  EXPECT_EQ(m.deadline_misses + m.lost_feedback + m.lost_setpoints + m.stale_setpoints, 0u);
+  // Zero initial position error: the exact contour error starts at zero.
+  EXPECT_NEAR(record.trace.front().contour_error_m, 0.0, 1e-15);
+  EXPECT_GT(m.e_max_m, 0.0);
+  EXPECT_LT(m.e_max_m, 1e-3);
+  // e_sum and e_rms are consistent with the per-sample trace.
+  double sum = 0.0, squares = 0.0;
+  for (const auto& row : record.trace) {
+    sum += std::abs(row.contour_error_m);
+    squares += row.contour_error_m * row.contour_error_m;
+  }
+  EXPECT_NEAR(m.e_sum_m, sum, 1e-15);
+  EXPECT_NEAR(m.e_rms_m, std::sqrt(squares / 401.0), 1e-15);
+}
+
+TEST(ContourJobRunner, ConstantDelayLongerThanAPeriodIsAccountedExactly) {
+  ContourJob job = small_circle_job();
+  job.downlink.delay = netsim::make_constant_delay(0.0075);  // 1.5 periods
+  job.uplink.delay = netsim::make_constant_delay(0.001);
+  job.deadline_s = 0.002;
+  ContourJobRunner runner(job);
+  const auto m = runner.run_iteration().metrics;
+  EXPECT_NEAR(m.tau_mean_s, 0.0085, 1e-12);
+  EXPECT_NEAR(m.tau_max_s, 0.0085, 1e-12);
+  EXPECT_NEAR(m.tau_p99_s, 0.0085, 1e-12);
+  EXPECT_NEAR(m.tau_sc_mean_s, 0.001, 1e-12);
+  EXPECT_NEAR(m.tau_ca_mean_s, 0.0075, 1e-12);
+  EXPECT_EQ(m.stale_setpoints, 0u);
+  EXPECT_EQ(m.deadline_misses, 0u);
+}
+
+TEST(ContourJobRunner, ReorderedSetpointsAreDroppedAsStale) {
+  // Delays alternate 12 ms and 1 ms: setpoint k+1 overtakes setpoint k, which must not act.
+  ContourJob job = small_circle_job();
+  job.downlink.delay = netsim::make_trace_delay({0.012, 0.001});
+  ContourJobRunner runner(job);
+  const auto m = runner.run_iteration().metrics;
+  // Even-numbered setpoints (12 ms) arrive after odd ones sent later: about half of them, per axis.
+  EXPECT_GE(m.stale_setpoints, 2u * 190u);
+  EXPECT_LE(m.stale_setpoints, 2u * 201u);
+  EXPECT_EQ(m.lost_setpoints, 0u);
+  EXPECT_LT(m.e_max_m, 2e-3);  // the loop stays stable on the newest setpoints
+}
+
+TEST(ContourJobRunner, LostSetpointsAreCountedAndTheLoopHolds) {
+  ContourJob job = small_circle_job();
+  job.downlink.loss = netsim::make_bernoulli_loss(0.2);
+  ContourJobRunner runner(job);
+  const auto m = runner.run_iteration().metrics;
+  const double n = 2.0 * 401.0, p = 0.2;
+  EXPECT_NEAR(static_cast<double>(m.lost_setpoints), n * p, 4.0 * std::sqrt(n * p * (1 - p)));
+  EXPECT_LT(m.e_max_m, 1e-3);
+}
+
+TEST(ContourJobRunner, LateFeedbackMissesTheDeadlineAndUsesTheNewestSample) {
+  ContourJob job = small_circle_job();
+  job.uplink.delay = netsim::make_constant_delay(0.007);  // beyond the 5 ms deadline
+  ContourJobRunner runner(job);
+  const auto m = runner.run_iteration().metrics;
+  EXPECT_EQ(m.deadline_misses, 401u);
+  // Computed at the deadline each cycle: tau = 5 ms for every setpoint.
+  EXPECT_NEAR(m.tau_mean_s, 0.005, 1e-12);
+}
+
+TEST(ContourJobRunner, SameSeedSameResultOtherSeedOtherResult) {
+  ContourJob job = small_circle_job("adrc+ilccc");
+  job.downlink.delay = netsim::make_uniform_delay(0.0003, 0.0008);
+  job.sensor.noise_stddev_m = 1e-7;
+  job.iterations = 3;
+  const auto a = ContourJobRunner(job).run_all();
+  const auto b = ContourJobRunner(job).run_all();
+  job.seed = 8;
+  const auto c = ContourJobRunner(job).run_all();
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(a[i].metrics.e_sum_m, b[i].metrics.e_sum_m);
+    EXPECT_EQ(a[i].metrics.tau_mean_s, b[i].metrics.tau_mean_s);
+    EXPECT_NE(a[i].metrics.e_sum_m, c[i].metrics.e_sum_m);
+  }
+  // Delays differ from one iteration to the next (the network does not repeat).
+  EXPECT_NE(a[0].metrics.tau_mean_s, a[1].metrics.tau_mean_s);
+}
+
+TEST(ContourJobRunner, InvalidJobsNameTheField) {
+  ContourJob job = small_circle_job();
+  job.sample_period_s = -1.0;
+  try {
+    ContourJobRunner runner(job);
+    FAIL();
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("sample_period"), std::string::npos);
+  }
+  job = small_circle_job("adrc+magic");
+  EXPECT_THROW(ContourJobRunner{job}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace netmc::sim
