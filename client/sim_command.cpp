@@ -20,7 +20,7 @@ struct SimFlags {
   std::string preset;
   std::string spec_file;
   std::string trajectory, plant, controllers, delay, uplink_delay, loss, uplink_loss;
-  std::string sample_period, duration, deadline, compute_delay;
+  std::string sample_period, duration, deadline, compute_delay, divergence_limit, command_limit;
   std::string adrc, ilc, pidccc, pid, estimator, sensor;
   int iterations = 0;
   long long seed = -1;
@@ -99,6 +99,18 @@ StudyPlan plan_from_flags(const SimFlags& f) {
     if (!f.compute_delay.empty()) {
       job.set_compute_delay_s(parse_quantity(f.compute_delay, Quantity::time, "--compute-delay"));
     }
+    if (!f.divergence_limit.empty()) {
+      job.set_divergence_limit_m(parse_quantity(f.divergence_limit, Quantity::length, "--divergence-limit"));
+      if (!(job.divergence_limit_m() > 0.0)) {
+        throw std::invalid_argument("--divergence-limit: expected a positive length such as 50mm");
+      }
+    }
+    if (!f.command_limit.empty()) {
+      job.set_command_limit(parse_quantity(f.command_limit, Quantity::plain, "--command-limit"));
+      if (!(job.command_limit() > 0.0)) {
+        throw std::invalid_argument("--command-limit: expected a positive number");
+      }
+    }
     if (f.iterations != 0) job.set_iterations(static_cast<std::uint32_t>(f.iterations));
     if (f.seed >= 0) job.set_seed(static_cast<std::uint64_t>(f.seed));
     if (!f.adrc.empty()) parse_adrc_gains(f.adrc, *job.mutable_controller()->mutable_adrc());
@@ -142,6 +154,8 @@ std::function<int()> add_sim_command(CLI::App& app) {
   sim->add_option("--duration", flags->duration, "Run length per iteration (default: the trajectory's)");
   sim->add_option("--deadline", flags->deadline, "How long the server waits for feedback (default: one period)");
   sim->add_option("--compute-delay", flags->compute_delay, "Computation delay tau_cc in virtual time");
+  sim->add_option("--divergence-limit", flags->divergence_limit, "Contour error at which a run counts as unstable and stops (default 50mm)");
+  sim->add_option("--command-limit", flags->command_limit, "Command saturation |U| enforced at the axis (default: none)");
   sim->add_option("--iterations", flags->iterations, "ILC iterations per run")->check(CLI::Range(1, 100000));
   sim->add_option("--seed", flags->seed, "Random seed")->check(CLI::NonNegativeNumber);
   sim->add_option("--adrc", flags->adrc, "ADRC gains: r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent");

@@ -42,6 +42,11 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
   const auto& reference = last(outcomes.front());
   for (const auto& outcome : outcomes) {
     const auto& m = last(outcome);
+    if (m.diverged()) {
+      fmt::print(out, "{:<18} unstable: contour error beyond the divergence limit at t = {:.3f} s of iteration {}\n",
+                 outcome.result.label(), m.diverged_at_s(), m.iteration());
+      continue;
+    }
     fmt::print(out, "{:<18} {:>11.4f} {:>11.3f} {:>11.2f} {:>9.3f} {:>9.3f}  {:>6.3f}/{:>6.3f}/{:>6.3f}",
                outcome.result.label(), m.e_max_m() * 1e3, m.e_sum_m() * 1e3,
                m.e_rms_m() * 1e6, m.e_max_m() / reference.e_max_m(),

@@ -7,13 +7,18 @@
 namespace netmc::control {
 
 enum class Discretization {
-  forward_euler,      // paper 001, eq. 9, as printed
-  zero_order_hold,    // exact discretization of the continuous observer for inputs held over h
+  // paper 001, eq. 9, as printed: continuous observer stepped by forward Euler, poles at 1 - w0 h.
+  forward_euler,
+  // Exact (zero-order-hold) discretization of the extended plant model (a chain of three
+  // integrators with input gain b0), observer gains placing all poles at exp(-w0 h)
+  // (Miklosovic, Radke and Gao, 2006). Exact for inputs held over the period.
+  zero_order_hold,
 };
 
 class ExtendedStateObserver {
  public:
-  // bandwidth w0 [rad/s]: all three observer poles at -w0; input_gain b0; sample period h [s].
+  // bandwidth w0 [rad/s]: all three observer poles at -w0 (s-plane) or their discrete image;
+  // input_gain b0; sample period h [s].
   ExtendedStateObserver(double bandwidth, double input_gain, double sample_period_s,
                         Discretization discretization = Discretization::forward_euler);
 

@@ -201,6 +201,7 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   job.deadline_s = spec.deadline_s();
   job.compute_delay_s = spec.compute_delay_s();
   if (spec.command_limit() != 0.0) job.command_limit = spec.command_limit();
+  if (spec.divergence_limit_m() != 0.0) job.divergence_limit_m = spec.divergence_limit_m();
   job.validate();
   // Construct the controller once here so a bad name or gain is reported before anything runs.
   in_field("controller", [&] {
@@ -270,6 +271,8 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   out.set_lost_feedback(static_cast<std::uint32_t>(m.lost_feedback));
   out.set_lost_setpoints(static_cast<std::uint32_t>(m.lost_setpoints));
   out.set_stale_setpoints(static_cast<std::uint32_t>(m.stale_setpoints));
+  out.set_diverged(m.diverged);
+  out.set_diverged_at_s(m.diverged_at_s);
   return out;
 }
 

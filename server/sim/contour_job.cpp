@@ -33,6 +33,7 @@ void ContourJob::validate() const {
           "compute_delay: expected a non-negative duration, got " +
               std::to_string(compute_delay_s));
   require(command_limit > 0.0, "command_limit: expected a positive number");
+  require(divergence_limit_m > 0.0, "divergence_limit: expected a positive length");
   require(uplink.delay && uplink.loss && downlink.delay && downlink.loss,
           "delay: every link needs a delay and a loss model");
   const double run_s = duration_s > 0.0 ? duration_s : trajectory->duration_s();

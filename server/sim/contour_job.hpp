@@ -42,6 +42,9 @@ struct ContourJob {
   double deadline_s = 0.0;             // server waits this long for feedback; 0: one period
   double compute_delay_s = 0.0;        // tau_cc in virtual time
   double command_limit = std::numeric_limits<double>::infinity();  // |U| enforced at the axis
+  // A run whose true contour error exceeds this (or whose command is not finite) is unstable:
+  // the iteration stops there and is reported as diverged; later iterations are not run.
+  double divergence_limit_m = 0.05;
   bool record_traces = false;
 
   // Throws std::invalid_argument naming the field when the job cannot run.

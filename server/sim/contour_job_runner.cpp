@@ -84,6 +84,7 @@ IterationRecord ContourJobRunner::run_iteration() {
   double squared_error_sum = 0.0;
   std::array<double, 2> tracking_squares{}, command_squares{};
   double compute_time = 0.0;
+  std::size_t samples = 0;  // cycles completed before a divergence, if any
 
   for (std::size_t k = 0; k < cycles; ++k) {
     const double t = static_cast<double>(k) * h;
@@ -123,6 +124,13 @@ IterationRecord ContourJobRunner::run_iteration() {
     compute_time = std::max(compute_time, complete ? last_arrival : deadline);
 
     const control::ContouringCycle cycle = controller_.step(k, reference, server_measurement);
+    const double contour_error = job_.trajectory->contour_error(true_position);
+    if (!(std::abs(contour_error) <= job_.divergence_limit_m) || !cycle.command.allFinite()) {
+      m.diverged = true;
+      m.diverged_at_s = t;
+      break;
+    }
+    ++samples;
     const double send_time = compute_time + job_.compute_delay_s;
     for (std::size_t axis = 0; axis < axis_count; ++axis) {
       if (!downlinks_[axis].send(send_time, k, cycle.command[static_cast<Eigen::Index>(axis)])) {
@@ -131,7 +139,6 @@ IterationRecord ContourJobRunner::run_iteration() {
     }
 
     // Metrics from the true plant state and the exact contour.
-    const double contour_error = job_.trajectory->contour_error(true_position);
     m.e_max_m = std::max(m.e_max_m, std::abs(contour_error));
     m.e_sum_m += std::abs(contour_error);
     squared_error_sum += contour_error * contour_error;
@@ -174,7 +181,8 @@ IterationRecord ContourJobRunner::run_iteration() {
     }
   }
 
-  const auto n = static_cast<double>(cycles);
+  if (job_.record_traces) record.trace.resize(samples);
+  const auto n = static_cast<double>(std::max<std::size_t>(samples, 1));
   m.e_rms_m = std::sqrt(squared_error_sum / n);
   for (std::size_t axis = 0; axis < axis_count; ++axis) {
     m.tracking_rms_m[axis] = std::sqrt(tracking_squares[axis] / n);
@@ -198,6 +206,7 @@ std::vector<IterationRecord> ContourJobRunner::run_all(
   while (completed_ < job_.iterations) {
     records.push_back(run_iteration());
     if (on_iteration) on_iteration(records.back());
+    if (records.back().metrics.diverged) break;
   }
   return records;
 }

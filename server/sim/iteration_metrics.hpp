@@ -24,6 +24,8 @@ struct IterationMetrics {
   std::uint64_t lost_feedback = 0;
   std::uint64_t lost_setpoints = 0;
   std::uint64_t stale_setpoints = 0;     // arrived after a newer one, dropped
+  bool diverged = false;                 // the loop went unstable; metrics cover samples before
+  double diverged_at_s = 0.0;
 };
 
 // One sample of a per-cycle trace (for --csv).
