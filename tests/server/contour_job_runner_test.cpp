@@ -102,6 +102,26 @@ TEST(ContourJobRunner, SameSeedSameResultOtherSeedOtherResult) {
   EXPECT_NE(a[0].metrics.tau_mean_s, a[1].metrics.tau_mean_s);
 }
 
+TEST(ContourJobRunner, AnUnstableLoopIsReportedAndStopsTheRun) {
+  // PID cross coupling (kp = 500 on the contour error) cannot take 10 ms of loop delay at h = 5 ms.
+  ContourJob job = small_circle_job("adrc+pidccc");
+  job.downlink.delay = netsim::make_constant_delay(0.010);
+  job.iterations = 5;
+  job.record_traces = true;
+  ContourJobRunner runner(job);
+  const auto records = runner.run_all();
+  ASSERT_EQ(records.size(), 1u);  // later iterations are not run
+  const auto& m = records[0].metrics;
+  EXPECT_TRUE(m.diverged);
+  EXPECT_GT(m.diverged_at_s, 0.0);
+  EXPECT_LT(m.diverged_at_s, 2.0);
+  EXPECT_LE(m.e_max_m, job.divergence_limit_m);
+  EXPECT_EQ(records[0].trace.size(), static_cast<std::size_t>(std::llround(m.diverged_at_s / 0.005)));
+  // The same loop without delay is stable.
+  job.downlink.delay = netsim::make_no_delay();
+  EXPECT_FALSE(ContourJobRunner(job).run_iteration().metrics.diverged);
+}
+
 TEST(ContourJobRunner, InvalidJobsNameTheField) {
   ContourJob job = small_circle_job();
   job.sample_period_s = -1.0;

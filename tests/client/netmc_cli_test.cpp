@@ -1,0 +1,103 @@
+// The netmc binary end to end: exit codes, one clear message, no half-written output, JSON.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace {
+
+struct Result {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& arguments) {
+  const std::string command = std::string(NETMC_BINARY) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return {-1, "popen failed"};
+  std::string output;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) output += buffer.data();
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+std::filesystem::path scratch(const std::string& name) {
+  auto path = std::filesystem::temp_directory_path() / ("netmc_cli_test_" + name);
+  std::filesystem::remove_all(path);
+  return path;
+}
+
+TEST(NetmcCli, BadInputFailsWithOneMessageNamingTheFieldAndWritesNothing) {
+  const auto json = scratch("bad.json");
+  const std::array<std::pair<const char*, const char*>, 9> cases{{
+      {"--controller adrc+fuzzy", "controller: unknown name 'adrc+fuzzy'"},
+      {"--trajectory circle:r=10,period", "--trajectory"},
+      {"--sample-period 0", "--sample-period"},
+      {"--sample-period -5ms", "--sample-period"},
+      {"--adrc kp=nan", "--adrc kp"},
+      {"--delay trace:/nonexistent/delays.csv", "/nonexistent/delays.csv"},
+      {"--delay uniform:min=2ms,max=1ms", "downlink.delay"},
+      {"--plant steam", "plant"},
+      {"--iterations 0", "--iterations"},
+  }};
+  for (const auto& [arguments, expected] : cases) {
+    const Result result = run("sim " + std::string(arguments) + " --json " + json.string());
+    EXPECT_NE(result.exit_code, 0) << arguments;
+    EXPECT_NE(result.output.find(expected), std::string::npos) << arguments << "\n" << result.output;
+    EXPECT_FALSE(std::filesystem::exists(json)) << arguments;
+  }
+}
+
+TEST(NetmcCli, UsageErrorsExitWithCode2) {
+  EXPECT_EQ(run("sim --no-such-flag").exit_code, 2);
+  EXPECT_EQ(run("sim --preset seed999").exit_code, 2);
+}
+
+TEST(NetmcCli, JsonHoldsEveryIterationOfEveryRun) {
+  const auto json = scratch("out.json");
+  const auto csv = scratch("traces");
+  const Result result = run("sim --controller adrc,adrc+ilccc --iterations 3 --json " +
+                            json.string() + " --csv " + csv.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  std::ifstream file(json);
+  std::stringstream content;
+  content << file.rdbuf();
+  const std::string text = content.str();
+  for (const char* key : {"\"runs\"", "\"controller\": \"adrc+ilccc\"", "\"iterations\"",
+                          "\"iteration\": 3", "\"e_max_m\"", "\"e_rms_m\"", "\"e_sum_m\"",
+                          "\"tau_mean_s\"", "\"tau_max_s\"", "\"plant\": \"seed001\"",
+                          "\"trajectory\"", "\"delay\""}) {
+    EXPECT_NE(text.find(key), std::string::npos) << key;
+  }
+  EXPECT_TRUE(std::filesystem::exists(csv / "2-adrc_ilccc.csv"));
+  EXPECT_NE(result.output.find("adrc+ilccc"), std::string::npos);
+  std::filesystem::remove_all(json);
+  std::filesystem::remove_all(csv);
+}
+
+TEST(NetmcCli, JsonSpecFileRunsAndBadSpecNamesTheFile) {
+  const auto spec = scratch("spec.json");
+  {
+    std::ofstream out(spec);
+    out << R"({"trajectory": {"line": {"x0_m": 0, "y0_m": 0, "x1_m": 0.02, "y1_m": 0.01,
+              "duration_s": 2}}, "controller": {"name": "adrc+pidccc"}, "iterations": 2})";
+  }
+  const Result ok = run("sim --spec " + spec.string());
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("adrc+pidccc"), std::string::npos);
+  {
+    std::ofstream out(spec);
+    out << R"({"iterations": "many"})";
+  }
+  const Result bad = run("sim --spec " + spec.string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find(spec.string()), std::string::npos) << bad.output;
+  std::filesystem::remove(spec);
+}
+
+}  // namespace

@@ -1,0 +1,101 @@
+// The compact flag syntax: units, shapes, delay and loss forms, and the error messages.
+#include <gtest/gtest.h>
+
+#include "client/spec_syntax.hpp"
+
+namespace netmc::cli {
+namespace {
+
+std::string error_of(const std::function<void()>& parse) {
+  try {
+    parse();
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(SpecSyntax, QuantitiesAreSiUnlessSuffixed) {
+  EXPECT_DOUBLE_EQ(parse_quantity("10mm", Quantity::length, "f"), 0.01);
+  EXPECT_DOUBLE_EQ(parse_quantity("250um", Quantity::length, "f"), 250e-6);
+  EXPECT_DOUBLE_EQ(parse_quantity("0.02", Quantity::length, "f"), 0.02);
+  EXPECT_DOUBLE_EQ(parse_quantity("0.8ms", Quantity::time, "f"), 0.8e-3);
+  EXPECT_DOUBLE_EQ(parse_quantity("300us", Quantity::time, "f"), 300e-6);
+  EXPECT_DOUBLE_EQ(parse_quantity("8s", Quantity::time, "f"), 8.0);
+  EXPECT_NE(error_of([] { parse_quantity("10ms", Quantity::length, "--trajectory r"); })
+                .find("--trajectory r: expected a length"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_quantity("fast", Quantity::time, "--sample-period"); })
+                .find("--sample-period"),
+            std::string::npos);
+  EXPECT_FALSE(error_of([] { parse_quantity("nan", Quantity::plain, "x"); }).empty());
+}
+
+TEST(SpecSyntax, Trajectories) {
+  const auto circle = parse_trajectory("circle:r=10mm,cx=50mm,cy=50mm,period=8s");
+  ASSERT_TRUE(circle.has_circle());
+  EXPECT_DOUBLE_EQ(circle.circle().radius_m(), 0.01);
+  EXPECT_DOUBLE_EQ(circle.circle().center_x_m(), 0.05);
+  EXPECT_DOUBLE_EQ(circle.circle().period_s(), 8.0);
+  const auto ellipse = parse_trajectory("ellipse:a=20mm,b=5mm,cx=0,cy=0,period=4s");
+  EXPECT_DOUBLE_EQ(ellipse.ellipse().semi_axis_x_m(), 0.02);
+  EXPECT_DOUBLE_EQ(ellipse.ellipse().semi_axis_y_m(), 0.005);
+  const auto line = parse_trajectory("line:x0=0,y0=0,x1=40mm,y1=30mm,duration=5s");
+  EXPECT_DOUBLE_EQ(line.line().x1_m(), 0.04);
+  EXPECT_DOUBLE_EQ(line.line().duration_s(), 5.0);
+
+  EXPECT_NE(error_of([] { parse_trajectory("spiral:r=1"); }).find("unknown shape 'spiral'"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_trajectory("circle:r=10mm,period=8s,q=1"); })
+                .find("unknown key 'q'"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_trajectory("circle:cx=1"); }).find("missing key 'r'"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_trajectory("circle:r"); }).find("expected key=value"),
+            std::string::npos);
+}
+
+TEST(SpecSyntax, DelaysAndLosses) {
+  const auto uniform = parse_delay("uniform:min=0.3ms,max=0.8ms", "--delay");
+  EXPECT_DOUBLE_EQ(uniform.uniform().min_s(), 0.3e-3);
+  EXPECT_DOUBLE_EQ(uniform.uniform().max_s(), 0.8e-3);
+  EXPECT_DOUBLE_EQ(parse_delay("constant:1ms", "--delay").constant_s(), 1e-3);
+  EXPECT_TRUE(parse_delay("none", "--delay").has_none());
+  EXPECT_EQ(parse_delay("trace:delays.csv", "--delay").trace().path(), "delays.csv");
+  const auto markov = parse_delay("markov:good=0.3ms..0.8ms,bad=3ms..12ms,p_gb=0.02,p_bg=0.2", "--delay");
+  EXPECT_DOUBLE_EQ(markov.markov().bad().max_s(), 12e-3);
+  EXPECT_DOUBLE_EQ(markov.markov().p_bad_to_good(), 0.2);
+  EXPECT_DOUBLE_EQ(parse_delay("pareto:scale=0.2ms,shape=1.5", "--delay").pareto().shape(), 1.5);
+  EXPECT_DOUBLE_EQ(parse_delay("normal:mean=1ms,sd=0.2ms", "--delay").normal().stddev_s(), 2e-4);
+  EXPECT_DOUBLE_EQ(parse_loss("bernoulli:p=0.01", "--loss").bernoulli().p(), 0.01);
+  EXPECT_DOUBLE_EQ(parse_loss("gilbert:p_gb=0.01,p_bg=0.3", "--loss").gilbert_elliott().loss_in_bad(), 1.0);
+
+  EXPECT_NE(error_of([] { parse_delay("gamma:k=2", "--delay"); }).find("--delay: unknown delay 'gamma'"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_delay("constant", "--delay"); }).find("constant:DURATION"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_delay("markov:good=1ms,bad=2ms..3ms,p_gb=0.1,p_bg=0.1", "--delay"); })
+                .find("MIN..MAX"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_loss("burst:p=1", "--uplink-loss"); }).find("--uplink-loss"),
+            std::string::npos);
+}
+
+TEST(SpecSyntax, Gains) {
+  netmc::v1::AdrcGains adrc;
+  parse_adrc_gains("r0=150,w0=120,observer=zoh", adrc);
+  EXPECT_EQ(adrc.r0(), 150.0);
+  EXPECT_EQ(adrc.observer(), "zoh");
+  EXPECT_FALSE(adrc.has_kp());
+  netmc::v1::IlcGains ilc;
+  parse_ilc_gains("kcp=30,q=20,lead=2", ilc);
+  EXPECT_EQ(ilc.q_cutoff_hz(), 20.0);
+  EXPECT_EQ(ilc.lead_samples(), 2u);
+  EXPECT_NE(error_of([&] { parse_ilc_gains("lead=1.5", ilc); }).find("whole number"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_adrc_gains("observer=rk4", adrc); }).find("euler or zoh"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace netmc::cli
