@@ -1,17 +1,15 @@
 #pragma once
-// Runs the ILC iterations of a ContourJob in virtual time: axis nodes sample on their clock,
-// feedback crosses the uplink, the server computes each cycle when the feedback of every axis
-// has arrived or its deadline has passed, setpoints cross the downlink and act on arrival.
-// Deterministic for a given seed.
+// Runs the ILC iterations of a ContourJob in-process, in virtual time, by wiring the axis-node
+// side (AxisEndpoint) and the server side (ContourServer) with direct calls. netmc-server and
+// netmc-axis wire the same two objects through DDS in lockstep mode. Deterministic for a seed.
 
 #include <functional>
 #include <vector>
 
-#include "control/contouring_controller.hpp"
-#include "netsim/delayed_channel.hpp"
+#include "server/sim/axis_endpoint.hpp"
 #include "server/sim/contour_job.hpp"
+#include "server/sim/contour_server.hpp"
 #include "server/sim/iteration_metrics.hpp"
-#include "server/sim/simulated_axis.hpp"
 
 namespace netmc::sim {
 
@@ -20,20 +18,19 @@ class ContourJobRunner {
   explicit ContourJobRunner(ContourJob job);
 
   IterationRecord run_iteration();                 // the next iteration
-  // All remaining iterations; `on_iteration` (optional) sees each as it completes.
+  // All remaining iterations (stopping after an unstable one); `on_iteration` (optional) sees
+  // each as it completes.
   std::vector<IterationRecord> run_all(
       const std::function<void(const IterationRecord&)>& on_iteration = {});
 
   const ContourJob& job() const { return job_; }
   std::size_t completed_iterations() const { return completed_; }
-  std::string controller_description() const { return controller_.describe(); }
+  std::string controller_description() const { return server_.controller_description(); }
 
  private:
   ContourJob job_;
-  control::ContouringController controller_;
-  std::vector<SimulatedAxis> axes_;
-  std::vector<netsim::DelayedChannel<double>> uplinks_;    // measured position
-  std::vector<netsim::DelayedChannel<double>> downlinks_;  // command
+  ContourServer server_;
+  std::vector<AxisEndpoint> axes_;
   std::size_t completed_ = 0;
 };
 

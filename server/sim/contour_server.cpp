@@ -1,0 +1,180 @@
+#include "server/sim/contour_server.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "server/sim/random_streams.hpp"
+
+namespace netmc::sim {
+namespace {
+
+double percentile(std::vector<double> values, double fraction) {
+  if (values.empty()) return 0.0;
+  const auto rank =
+      static_cast<std::size_t>(std::ceil(fraction * static_cast<double>(values.size())));
+  const std::size_t index = std::min(values.size() - 1, rank == 0 ? 0 : rank - 1);
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index),
+                   values.end());
+  return values[index];
+}
+
+double mean(const std::vector<double>& values) {
+  if (values.empty()) return 0.0;
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
+}
+
+}  // namespace
+
+ContourServer::ContourServer(const ContourJob& job)
+    : job_((job.validate(), job)),
+      controller_(control::make_contouring_controller(job_.controller_name, job_.controller,
+                                                      job_.sample_period_s)),
+      cycles_(job_.cycles()) {
+  for (std::size_t axis = 0; axis < job_.axes.size(); ++axis) {
+    uplinks_.emplace_back(netsim::LinkModel(job_.uplink.delay->clone(), job_.uplink.loss->clone(),
+                                            job_stream(job_.seed, StreamKind::uplink, axis, 0)));
+  }
+}
+
+Eigen::Vector2d ContourServer::begin_iteration(std::size_t iteration) {
+  // Every iteration starts from the same initial state; nothing of the previous one is in flight.
+  const Eigen::Vector2d start = job_.trajectory->sample(0.0).position;
+  for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
+    uplinks_[axis].reset(job_stream(job_.seed, StreamKind::uplink, axis, iteration));
+  }
+  controller_.begin_iteration(start, cycles_);
+
+  record_ = IterationRecord{};
+  record_.metrics.iteration = iteration;
+  if (job_.record_traces) record_.trace.resize(cycles_);
+  server_measurement_ = start;
+  newest_sequence_.assign(uplinks_.size(), -1);
+  tau_.clear();
+  tau_.reserve(cycles_ * uplinks_.size());
+  tau_sc_.clear();
+  tau_ca_.clear();
+  squared_error_sum_ = 0.0;
+  tracking_squares_ = {};
+  command_squares_ = {};
+  compute_time_ = 0.0;
+  samples_ = 0;
+  return start;
+}
+
+void ContourServer::submit_feedback(std::size_t axis, std::uint64_t cycle, double sample_time_s,
+                                    const AxisSample& sample) {
+  const auto i = static_cast<Eigen::Index>(axis);
+  true_position_[i] = sample.true_position_m;
+  measured_[i] = sample.measured_m;
+  if (!uplinks_[axis].send(sample_time_s, cycle, sample.measured_m)) {
+    ++record_.metrics.lost_feedback;
+  }
+}
+
+CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
+  IterationMetrics& m = record_.metrics;
+  const double t = static_cast<double>(cycle) * job_.sample_period_s;
+  const control::ReferencePoint reference = job_.trajectory->sample(t);
+
+  // Event-driven: cycle k is computed when feedback k of every axis is in, or at the deadline
+  // with the newest feedback the server holds. Only messages of cycles <= k are in flight.
+  const double deadline = t + job_.deadline();
+  bool complete = true;
+  double last_arrival = t;
+  for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
+    bool arrived = false;
+    for (const auto& delivery : uplinks_[axis].receive_until(deadline)) {
+      const auto sequence = static_cast<std::int64_t>(delivery.sequence);
+      if (sequence > newest_sequence_[axis]) {
+        newest_sequence_[axis] = sequence;
+        server_measurement_[static_cast<Eigen::Index>(axis)] = delivery.payload;
+      }
+      if (delivery.sequence == cycle) {
+        arrived = true;
+        last_arrival = std::max(last_arrival, delivery.arrival_time_s);
+        tau_sc_.push_back(delivery.arrival_time_s - t);
+      }
+    }
+    complete = complete && arrived;
+  }
+  if (!complete) ++m.deadline_misses;
+  compute_time_ = std::max(compute_time_, complete ? last_arrival : deadline);
+
+  CycleCommand out;
+  const control::ContouringCycle step = controller_.step(cycle, reference, server_measurement_);
+  out.command = step.command;
+  out.send_time_s = compute_time_ + job_.compute_delay_s;
+
+  // Metrics from the true plant state and the exact contour.
+  const double contour_error = job_.trajectory->contour_error(true_position_);
+  if (!(std::abs(contour_error) <= job_.divergence_limit_m) || !step.command.allFinite()) {
+    m.diverged = true;
+    m.diverged_at_s = t;
+    out.diverged = true;
+    return out;
+  }
+  ++samples_;
+  m.e_max_m = std::max(m.e_max_m, std::abs(contour_error));
+  m.e_sum_m += std::abs(contour_error);
+  squared_error_sum_ += contour_error * contour_error;
+  for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
+    const auto i = static_cast<Eigen::Index>(axis);
+    const double tracking = reference.position[i] - true_position_[i];
+    tracking_squares_[axis] += tracking * tracking;
+    m.tracking_max_m[axis] = std::max(m.tracking_max_m[axis], std::abs(tracking));
+    command_squares_[axis] += step.command[i] * step.command[i];
+  }
+  if (job_.record_traces) {
+    CycleTrace& row = record_.trace[cycle];
+    row.time_s = t;
+    for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
+      const auto i = static_cast<Eigen::Index>(axis);
+      row.reference_m[axis] = reference.position[i];
+      row.position_m[axis] = true_position_[i];
+      row.measured_m[axis] = measured_[i];
+      row.axis_command[axis] = step.axis_command[i];
+      row.command[axis] = step.command[i];
+    }
+    row.contour_error_m = contour_error;
+    row.contour_error_estimate_m = step.estimate.contour_error;
+    row.coupling_command = step.coupling_command;
+  }
+  return out;
+}
+
+void ContourServer::record_applied(std::size_t axis, const std::vector<AppliedSetpoint>& applied) {
+  for (const auto& a : applied) {
+    const double loop_delay =
+        a.arrival_time_s - static_cast<double>(a.sequence) * job_.sample_period_s;
+    tau_.push_back(loop_delay);
+    tau_ca_.push_back(a.arrival_time_s - a.send_time_s);
+    if (job_.record_traces && axis == 0 && a.sequence < record_.trace.size()) {
+      record_.trace[a.sequence].tau_s = loop_delay;
+    }
+  }
+}
+
+IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
+                                             std::uint64_t stale_setpoints) {
+  IterationMetrics& m = record_.metrics;
+  if (job_.record_traces) record_.trace.resize(samples_);
+  const auto n = static_cast<double>(std::max<std::size_t>(samples_, 1));
+  m.e_rms_m = std::sqrt(squared_error_sum_ / n);
+  for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
+    m.tracking_rms_m[axis] = std::sqrt(tracking_squares_[axis] / n);
+    m.command_rms[axis] = std::sqrt(command_squares_[axis] / n);
+  }
+  m.lost_setpoints = lost_setpoints;
+  m.stale_setpoints = stale_setpoints;
+  m.tau_mean_s = mean(tau_);
+  m.tau_max_s = tau_.empty() ? 0.0 : *std::max_element(tau_.begin(), tau_.end());
+  m.tau_p99_s = percentile(tau_, 0.99);
+  m.tau_sc_mean_s = mean(tau_sc_);
+  m.tau_ca_mean_s = mean(tau_ca_);
+  controller_.end_iteration();
+  return std::move(record_);
+}
+
+}  // namespace netmc::sim

@@ -1,0 +1,63 @@
+#pragma once
+// The server side of a contouring job in virtual time: the uplink of each axis (netsim delays
+// or drops feedback before the server consumes it), the event-driven cycle with its deadline,
+// the contouring controller, and the iteration metrics. In-process runs and netmc-server's
+// lockstep mode drive the same object, so both give bit-identical results.
+
+#include <Eigen/Dense>
+#include <cstdint>
+#include <vector>
+
+#include "control/contouring_controller.hpp"
+#include "netsim/delayed_channel.hpp"
+#include "server/sim/axis_endpoint.hpp"
+#include "server/sim/contour_job.hpp"
+#include "server/sim/iteration_metrics.hpp"
+
+namespace netmc::sim {
+
+struct CycleCommand {
+  Eigen::Vector2d command = Eigen::Vector2d::Zero();
+  double send_time_s = 0.0;     // when the setpoints leave the server (virtual time)
+  bool diverged = false;        // the loop is unstable: stop the iteration
+};
+
+class ContourServer {
+ public:
+  explicit ContourServer(const ContourJob& job);
+
+  // Returns the start position every axis must rest at for this iteration.
+  Eigen::Vector2d begin_iteration(std::size_t iteration);
+  // Feedback `cycle` of `axis`, sampled at `sample_time_s`, enters the uplink.
+  void submit_feedback(std::size_t axis, std::uint64_t cycle, double sample_time_s,
+                       const AxisSample& sample);
+  // Computes cycle k once the feedback of cycle k has been submitted for every axis.
+  CycleCommand compute_cycle(std::uint64_t cycle);
+  // Setpoints applied by `axis`, for the loop-delay statistics.
+  void record_applied(std::size_t axis, const std::vector<AppliedSetpoint>& applied);
+  // Closes the iteration; `lost` and `stale` are the axes' downlink counters.
+  IterationRecord end_iteration(std::uint64_t lost_setpoints, std::uint64_t stale_setpoints);
+
+  std::string controller_description() const { return controller_.describe(); }
+  std::size_t cycles() const { return cycles_; }
+
+ private:
+  ContourJob job_;
+  control::ContouringController controller_;
+  std::vector<netsim::DelayedChannel<double>> uplinks_;
+  std::size_t cycles_;
+
+  // State of the current iteration.
+  IterationRecord record_;
+  Eigen::Vector2d server_measurement_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d true_position_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d measured_ = Eigen::Vector2d::Zero();
+  std::vector<std::int64_t> newest_sequence_;
+  std::vector<double> tau_, tau_sc_, tau_ca_;
+  double squared_error_sum_ = 0.0;
+  std::array<double, 2> tracking_squares_{}, command_squares_{};
+  double compute_time_ = 0.0;
+  std::size_t samples_ = 0;
+};
+
+}  // namespace netmc::sim
