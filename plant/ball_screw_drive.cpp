@@ -24,7 +24,8 @@ BallScrewParameters validated(BallScrewParameters p) {
 }  // namespace
 
 BallScrewDrive::BallScrewDrive(BallScrewParameters p)
-    : p_(validated(p)),
+    : TwoStateAxisPlant(kOwner),
+      p_(validated(p)),
       // Paper 002, eq. 1 divided by J s: motor torque Ka Kt (u + d) drives J theta'' + B theta',
       // and y = rg theta.
       gain_(p_.amplifier_gain * p_.torque_constant * p_.lead_m_per_rad / p_.inertia),
@@ -34,38 +35,22 @@ BallScrewDrive::BallScrewDrive(BallScrewParameters p)
   exact_ = ExactDiscretizer(a, Eigen::Vector2d(0.0, gain_));
 }
 
-void BallScrewDrive::reset(double position, double velocity) {
-  require_finite(kOwner, "position", position);
-  require_finite(kOwner, "velocity", velocity);
-  z_ << position, velocity;
-  time_ = 0.0;
-}
-
-void BallScrewDrive::advance(double duration_s, double input) {
-  require_advance_arguments(kOwner, duration_s, input);
-  if (duration_s == 0.0) return;
-  for_each_smooth_piece(
-      p_.disturbance, time_, duration_s,
-      [&](double t0, double dt, double step_level) { advance_piece(t0, dt, input, step_level); });
-  time_ += duration_s;
-}
-
 void BallScrewDrive::advance_piece(double t0, double duration, double input, double step_level) {
   const Disturbance& d = p_.disturbance;
   if (smooth_part_is_constant(d)) {
-    exact_.step(z_, duration, input + smooth_part(d, t0) + step_level);
+    exact_.step(state(), duration, input + smooth_part(d, t0) + step_level);
     return;
   }
   const double k = gain_;
   const double r = rate_;
   const long long n = substep_count(kOwner, duration, p_.max_substep_s);
-  double y = z_(0);
-  double v = z_(1);
+  double y = state()(0);
+  double v = state()(1);
   // Paper 002, eq. 1: y'' = -(B/J) y' + (Ka Kt rg / J) (u + d(t)).
   rk4_second_order(y, v, t0, duration, n, [&](double t, double, double vv) {
     return -r * vv + k * (input + smooth_part(d, t) + step_level);
   });
-  z_ << y, v;
+  state() << y, v;
 }
 
 std::unique_ptr<AxisPlant> BallScrewDrive::clone() const {

@@ -4,13 +4,12 @@
 // u in volts, y in m (rg in m/rad), d(t) in volts at the amplifier input. Exact (matrix
 // exponential) when d is constant over the step, otherwise RK4 sub-steps.
 
-#include <Eigen/Core>
 #include <memory>
 #include <string>
 
-#include "plant/axis_plant.hpp"
 #include "plant/disturbance.hpp"
 #include "plant/exact_discretizer.hpp"
+#include "plant/piecewise_axis_plant.hpp"
 
 namespace netmc::plant {
 
@@ -24,15 +23,10 @@ struct BallScrewParameters {
   double max_substep_s = 1e-4;    // RK4 sub-step bound
 };
 
-class BallScrewDrive final : public AxisPlant {
+class BallScrewDrive final : public TwoStateAxisPlant {
  public:
   explicit BallScrewDrive(BallScrewParameters p);
 
-  void reset(double position, double velocity) override;
-  void advance(double duration_s, double input) override;
-  double position() const override { return z_(0); }
-  double velocity() const override { return z_(1); }
-  double time() const override { return time_; }
   std::unique_ptr<AxisPlant> clone() const override;
   std::string describe() const override;
 
@@ -43,14 +37,13 @@ class BallScrewDrive final : public AxisPlant {
   double damping_rate() const { return rate_; }
 
  private:
-  void advance_piece(double t0, double duration, double input, double step_level);
+  const Disturbance& disturbance() const override { return p_.disturbance; }
+  void advance_piece(double t0, double duration, double input, double step_level) override;
 
   BallScrewParameters p_;
   double gain_ = 0.0;
   double rate_ = 0.0;
   ExactDiscretizer exact_;
-  Eigen::Vector2d z_ = Eigen::Vector2d::Zero();  // [y, y']
-  double time_ = 0.0;
 };
 
 }  // namespace netmc::plant

@@ -40,7 +40,8 @@ LinearMotorParameters validated(LinearMotorParameters p) {
 
 }  // namespace
 
-LinearMotorAxis::LinearMotorAxis(LinearMotorParameters p) : p_(validated(std::move(p))) {
+LinearMotorAxis::LinearMotorAxis(LinearMotorParameters p)
+    : TwoStateAxisPlant(kOwner), p_(validated(std::move(p))) {
   bool cogging_off = true;
   wavenumbers_.reserve(p_.cogging.size());
   for (const CoggingHarmonic& h : p_.cogging) {
@@ -75,40 +76,24 @@ double LinearMotorAxis::cogging_force(double position) const {
   return f;
 }
 
-void LinearMotorAxis::reset(double position, double velocity) {
-  require_finite(kOwner, "position", position);
-  require_finite(kOwner, "velocity", velocity);
-  z_ << position, velocity;
-  time_ = 0.0;
-}
-
-void LinearMotorAxis::advance(double duration_s, double input) {
-  require_advance_arguments(kOwner, duration_s, input);
-  if (duration_s == 0.0) return;
-  for_each_smooth_piece(
-      p_.disturbance, time_, duration_s,
-      [&](double t0, double dt, double step_level) { advance_piece(t0, dt, input, step_level); });
-  time_ += duration_s;
-}
-
 void LinearMotorAxis::advance_piece(double t0, double duration, double input, double step_level) {
   const Disturbance& d = p_.disturbance;
   if (linear_ && smooth_part_is_constant(d)) {
-    exact_.step(z_, duration, input + smooth_part(d, t0) + step_level);
+    exact_.step(state(), duration, input + smooth_part(d, t0) + step_level);
     return;
   }
   const double inv_mass = 1.0 / p_.mass;
   const double damping = p_.damping;
   const long long n = substep_count(kOwner, duration, p_.max_substep_s);
-  double y = z_(0);
-  double v = z_(1);
+  double y = state()(0);
+  double v = state()(1);
   // Paper 000, eq. 2-43 / A.1: M y'' = u - B y' - Ff(y') - Fr(y) + d.
   rk4_second_order(y, v, t0, duration, n, [&](double t, double yy, double vv) {
     const double force = input + smooth_part(d, t) + step_level - damping * vv -
                          friction_force(vv) - cogging_force(yy);
     return force * inv_mass;
   });
-  z_ << y, v;
+  state() << y, v;
 }
 
 std::unique_ptr<AxisPlant> LinearMotorAxis::clone() const {

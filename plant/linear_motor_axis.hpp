@@ -8,14 +8,13 @@
 // Exact (matrix exponential) when friction and cogging are off and d is constant over the step;
 // otherwise RK4 with sub-steps no longer than max_substep_s.
 
-#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "plant/axis_plant.hpp"
 #include "plant/disturbance.hpp"
 #include "plant/exact_discretizer.hpp"
+#include "plant/piecewise_axis_plant.hpp"
 
 namespace netmc::plant {
 
@@ -37,15 +36,10 @@ struct LinearMotorParameters {
   double max_substep_s = 2e-5;  // RK4 sub-step bound
 };
 
-class LinearMotorAxis final : public AxisPlant {
+class LinearMotorAxis final : public TwoStateAxisPlant {
  public:
   explicit LinearMotorAxis(LinearMotorParameters p);
 
-  void reset(double position, double velocity) override;
-  void advance(double duration_s, double input) override;
-  double position() const override { return z_(0); }
-  double velocity() const override { return z_(1); }
-  double time() const override { return time_; }
   std::unique_ptr<AxisPlant> clone() const override;
   std::string describe() const override;
 
@@ -55,14 +49,13 @@ class LinearMotorAxis final : public AxisPlant {
   double cogging_force(double position) const;
 
  private:
-  void advance_piece(double t0, double duration, double input, double step_level);
+  const Disturbance& disturbance() const override { return p_.disturbance; }
+  void advance_piece(double t0, double duration, double input, double step_level) override;
 
   LinearMotorParameters p_;
   std::vector<double> wavenumbers_;  // 2 pi i / P per harmonic, rad/m
   bool linear_ = false;
   ExactDiscretizer exact_;
-  Eigen::Vector2d z_ = Eigen::Vector2d::Zero();  // [y, y']
-  double time_ = 0.0;
 };
 
 }  // namespace netmc::plant

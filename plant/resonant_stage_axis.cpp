@@ -28,7 +28,8 @@ ResonantStageParameters validated(ResonantStageParameters p) {
 
 }  // namespace
 
-ResonantStageAxis::ResonantStageAxis(ResonantStageParameters p) : p_(validated(std::move(p))) {
+ResonantStageAxis::ResonantStageAxis(ResonantStageParameters p)
+    : PiecewiseAxisPlant(kOwner), p_(validated(std::move(p))) {
   modes_.reserve(p_.modes.size());
   for (const ResonanceMode& m : p_.modes) {
     // Paper 004, eq. 1: denominator s^2 + 4 pi x f s + (2 pi f)^2 = s^2 + 2 x w s + w^2.
@@ -56,22 +57,10 @@ double ResonantStageAxis::velocity() const {
   return v;
 }
 
-void ResonantStageAxis::reset(double position, double velocity) {
-  require_finite(kOwner, "position", position);
-  require_finite(kOwner, "velocity", velocity);
+void ResonantStageAxis::reset_state(double position, double velocity) {
   // The modes start at rest; the whole given motion belongs to the rigid body.
   rigid_ << position, velocity;
   for (ModeState& m : modes_) m.z.setZero();
-  time_ = 0.0;
-}
-
-void ResonantStageAxis::advance(double duration_s, double input) {
-  require_advance_arguments(kOwner, duration_s, input);
-  if (duration_s == 0.0) return;
-  for_each_smooth_piece(
-      p_.disturbance, time_, duration_s,
-      [&](double t0, double dt, double step_level) { advance_piece(t0, dt, input, step_level); });
-  time_ += duration_s;
 }
 
 void ResonantStageAxis::advance_piece(double t0, double duration, double input, double step_level) {

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "plant/axis_plant.hpp"
 #include "plant/disturbance.hpp"
 #include "plant/exact_discretizer.hpp"
+#include "plant/piecewise_axis_plant.hpp"
 
 namespace netmc::plant {
 
@@ -29,15 +29,12 @@ struct ResonantStageParameters {
   double max_substep_s = 1e-5;  // RK4 sub-step bound (digest 4.6 [A]: 100 kHz)
 };
 
-class ResonantStageAxis final : public AxisPlant {
+class ResonantStageAxis final : public PiecewiseAxisPlant {
  public:
   explicit ResonantStageAxis(ResonantStageParameters p);
 
-  void reset(double position, double velocity) override;
-  void advance(double duration_s, double input) override;
   double position() const override;
   double velocity() const override;
-  double time() const override { return time_; }
   std::unique_ptr<AxisPlant> clone() const override;
   std::string describe() const override;
 
@@ -55,12 +52,13 @@ class ResonantStageAxis final : public AxisPlant {
     Eigen::Vector2d z = Eigen::Vector2d::Zero();
   };
 
-  void advance_piece(double t0, double duration, double input, double step_level);
+  const Disturbance& disturbance() const override { return p_.disturbance; }
+  void reset_state(double position, double velocity) override;
+  void advance_piece(double t0, double duration, double input, double step_level) override;
 
   ResonantStageParameters p_;
   Eigen::Vector2d rigid_ = Eigen::Vector2d::Zero();
   std::vector<ModeState> modes_;
-  double time_ = 0.0;
 };
 
 }  // namespace netmc::plant

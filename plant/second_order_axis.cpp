@@ -25,7 +25,8 @@ SecondOrderAxisParameters validated(SecondOrderAxisParameters p) {
 
 }  // namespace
 
-SecondOrderAxis::SecondOrderAxis(SecondOrderAxisParameters p) : p_(validated(std::move(p))) {
+SecondOrderAxis::SecondOrderAxis(SecondOrderAxisParameters p)
+    : TwoStateAxisPlant(kOwner), p_(validated(std::move(p))) {
   // Paper 001, eq. 3 in state form z = [x1, x2]: x1' = x2, x2' = a1 x1 + a2 x2 + w, with the held
   // input w = b u + d entering the velocity equation.
   Eigen::Matrix2d a;
@@ -33,27 +34,11 @@ SecondOrderAxis::SecondOrderAxis(SecondOrderAxisParameters p) : p_(validated(std
   exact_ = ExactDiscretizer(a, Eigen::Vector2d(0.0, 1.0));
 }
 
-void SecondOrderAxis::reset(double position, double velocity) {
-  require_finite(kOwner, "position", position);
-  require_finite(kOwner, "velocity", velocity);
-  z_ << position, velocity;
-  time_ = 0.0;
-}
-
-void SecondOrderAxis::advance(double duration_s, double input) {
-  require_advance_arguments(kOwner, duration_s, input);
-  if (duration_s == 0.0) return;
-  for_each_smooth_piece(
-      p_.disturbance, time_, duration_s,
-      [&](double t0, double dt, double step_level) { advance_piece(t0, dt, input, step_level); });
-  time_ += duration_s;
-}
-
 void SecondOrderAxis::advance_piece(double t0, double duration, double input, double step_level) {
   const Disturbance& d = p_.disturbance;
   if (p_.coulomb_acceleration == 0.0 && smooth_part_is_constant(d)) {
     // Linear with a held input: exact (digest 1.2 [A]).
-    exact_.step(z_, duration, p_.b * input + smooth_part(d, t0) + step_level);
+    exact_.step(state(), duration, p_.b * input + smooth_part(d, t0) + step_level);
     return;
   }
   const double forcing = p_.b * input + step_level;
@@ -62,8 +47,8 @@ void SecondOrderAxis::advance_piece(double t0, double duration, double input, do
   const double a1 = p_.a1;
   const double a2 = p_.a2;
   const long long n = substep_count(kOwner, duration, p_.max_substep_s);
-  double x = z_(0);
-  double v = z_(1);
+  double x = state()(0);
+  double v = state()(1);
   // Paper 001, eq. 3 with the digest 1.7 [A] friction -c tanh(x'/scale).
   if (smooth_part_is_constant(d)) {
     const double w = forcing + smooth_part(d, t0);
@@ -75,7 +60,7 @@ void SecondOrderAxis::advance_piece(double t0, double duration, double input, do
       return a1 * xx + a2 * vv + forcing + smooth_part(d, t) - c * std::tanh(vv * inv_scale);
     });
   }
-  z_ << x, v;
+  state() << x, v;
 }
 
 std::unique_ptr<AxisPlant> SecondOrderAxis::clone() const {

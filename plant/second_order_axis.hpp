@@ -5,13 +5,12 @@
 // Linear pieces (no friction, d constant over the piece) are integrated exactly by the matrix
 // exponential; otherwise classical RK4 with sub-steps no longer than max_substep_s.
 
-#include <Eigen/Core>
 #include <memory>
 #include <string>
 
-#include "plant/axis_plant.hpp"
 #include "plant/disturbance.hpp"
 #include "plant/exact_discretizer.hpp"
+#include "plant/piecewise_axis_plant.hpp"
 
 namespace netmc::plant {
 
@@ -23,27 +22,21 @@ struct SecondOrderAxisParameters {
   double max_substep_s = 1e-4;           // RK4 sub-step bound, > 0
 };
 
-class SecondOrderAxis final : public AxisPlant {
+class SecondOrderAxis final : public TwoStateAxisPlant {
  public:
   explicit SecondOrderAxis(SecondOrderAxisParameters p);
 
-  void reset(double position, double velocity) override;
-  void advance(double duration_s, double input) override;
-  double position() const override { return z_(0); }
-  double velocity() const override { return z_(1); }
-  double time() const override { return time_; }
   std::unique_ptr<AxisPlant> clone() const override;
   std::string describe() const override;
 
   const SecondOrderAxisParameters& parameters() const { return p_; }
 
  private:
-  void advance_piece(double t0, double duration, double input, double step_level);
+  const Disturbance& disturbance() const override { return p_.disturbance; }
+  void advance_piece(double t0, double duration, double input, double step_level) override;
 
   SecondOrderAxisParameters p_;
   ExactDiscretizer exact_;
-  Eigen::Vector2d z_ = Eigen::Vector2d::Zero();  // [x, x']
-  double time_ = 0.0;
 };
 
 }  // namespace netmc::plant
