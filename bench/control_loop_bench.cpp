@@ -1,0 +1,106 @@
+// Measures one ContouringController::step, one simulated ILC iteration (1601 cycles), and the seed001 study.
+// Run: build/bench/netmc_bench  (e.g. --benchmark_repetitions=5 --benchmark_report_aggregates_only=true)
+
+#include <benchmark/benchmark.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "client/presets.hpp"
+#include "client/study_runner.hpp"
+#include "control/circle_trajectory.hpp"
+#include "control/controller_catalog.hpp"
+#include "server/job/job_builder.hpp"
+#include "server/sim/contour_job_runner.hpp"
+
+namespace {
+
+constexpr double kSamplePeriod = 0.005;   // h = 5 ms
+constexpr std::size_t kCycles = 1601;     // 8 s / 5 ms + 1 (k = 0..1600)
+
+// One controller cycle on the paper-001 circle (centre (50, 50) mm, r = 10 mm, 8 s) with paper
+// 001's default gains. References and measurements are precomputed so only step() is timed; the
+// measured position sits a fixed (0.1, -0.05) mm off the reference. The cycle index k wraps at
+// 1601; at each wrap end_iteration() + begin_iteration() are called inside the timed loop (once
+// per 1601 steps, so their cost, including the ILC memory update, is amortized into the figure).
+void control_step(benchmark::State& state, const std::string& controller_name) {
+  const netmc::control::CircleTrajectory circle({{0.05, 0.05}, 0.01, 8.0});
+  std::vector<netmc::control::ReferencePoint> references(kCycles);
+  std::vector<Eigen::Vector2d> measured(kCycles);
+  for (std::size_t k = 0; k < kCycles; ++k) {
+    references[k] = circle.sample(static_cast<double>(k) * kSamplePeriod);
+    measured[k] = references[k].position + Eigen::Vector2d(1e-4, -5e-5);
+  }
+  auto controller =
+      netmc::control::make_contouring_controller(controller_name, {}, kSamplePeriod);
+  const Eigen::Vector2d start = references[0].position;
+  controller.begin_iteration(start, kCycles);
+
+  std::size_t k = 0;
+  for (auto _ : state) {
+    auto cycle = controller.step(k, references[k], measured[k]);
+    benchmark::DoNotOptimize(cycle);
+    if (++k == kCycles) {
+      k = 0;
+      controller.end_iteration();
+      controller.begin_iteration(start, kCycles);
+    }
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+
+void BM_ControlStep_AdrcIlccc_TwoAxes(benchmark::State& state) { control_step(state, "adrc+ilccc"); }
+void BM_ControlStep_Adrc_TwoAxes(benchmark::State& state) { control_step(state, "adrc"); }
+
+// One full ILC iteration (1601 cycles: plants, sensors, delayed links, controller, metrics) of
+// the seed001 adrc+ilccc job. The runner is built once; each benchmark iteration is the next ILC
+// iteration. The Q-filtered law is used because the paper's law drifts unstable after ~100
+// iterations (README), which a long benchmark run would reach.
+void BM_SimulatedIteration_Seed001_AdrcIlccc(benchmark::State& state) {
+  auto spec = netmc::cli::seed001_job("adrc+ilccc");
+  spec.mutable_controller()->mutable_ilccc()->set_q_cutoff_hz(20.0);
+  netmc::sim::ContourJob job = netmc::job::build_contour_job(spec);
+  job.iterations = 1'000'000;
+  netmc::sim::ContourJobRunner runner(std::move(job));
+  for (auto _ : state) {
+    auto record = runner.run_iteration();
+    if (record.metrics.diverged) {
+      state.SkipWithError("simulated iteration diverged");
+      break;
+    }
+    benchmark::DoNotOptimize(record);
+  }
+  state.counters["cycles_per_second"] = benchmark::Counter(
+      static_cast<double>(kCycles), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+// The whole default study: 4 runs (adrc, adrc+pidccc, adrc+ilccc, adrc+ilccc+q20hz) x 20
+// iterations, in process, on `threads` worker threads. The all-cores variant reports wall-clock
+// time (UseRealTime): the CPU time of the calling thread alone would understate the work.
+void seed001_study(benchmark::State& state, unsigned threads) {
+  const netmc::cli::StudyPlan plan = netmc::cli::make_preset("seed001");
+  for (auto _ : state) {
+    auto outcomes = netmc::cli::run_study_in_process(plan, false, threads);
+    benchmark::DoNotOptimize(outcomes);
+  }
+  state.counters["threads"] = static_cast<double>(threads);
+}
+
+void BM_Seed001Study_20Iterations(benchmark::State& state) { seed001_study(state, 1); }
+void BM_Seed001Study_20Iterations_AllCores(benchmark::State& state) {
+  const unsigned cores = std::thread::hardware_concurrency();
+  seed001_study(state, cores == 0 ? 1 : cores);
+}
+
+}  // namespace
+
+BENCHMARK(BM_ControlStep_AdrcIlccc_TwoAxes);
+BENCHMARK(BM_ControlStep_Adrc_TwoAxes);
+BENCHMARK(BM_SimulatedIteration_Seed001_AdrcIlccc)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Seed001Study_20Iterations)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Seed001Study_20Iterations_AllCores)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+BENCHMARK_MAIN();
