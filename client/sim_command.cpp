@@ -1,185 +1,37 @@
 #include "client/sim_command.hpp"
 
-#include <fmt/format.h>
-
-#include <fstream>
 #include <iostream>
-#include <sstream>
 #include <thread>
 
-#include "client/presets.hpp"
-#include "client/spec_syntax.hpp"
+#include "client/study_flags.hpp"
 #include "client/study_report.hpp"
 #include "client/study_runner.hpp"
-#include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
-namespace {
-
-struct SimFlags {
-  std::string preset;
-  std::string spec_file;
-  std::string trajectory, plant, controllers, delay, uplink_delay, loss, uplink_loss;
-  std::string sample_period, duration, deadline, compute_delay, divergence_limit, command_limit;
-  std::string adrc, ilc, pidccc, pid, estimator, sensor;
-  int iterations = 0;
-  long long seed = -1;
-  std::string json_path, csv_dir;
-  bool curve = false;
-  unsigned threads = 0;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw std::invalid_argument("--spec: cannot read '" + path + "'");
-  std::ostringstream content;
-  content << file.rdbuf();
-  return content.str();
-}
-
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
-
-StudyPlan plan_from_flags(const SimFlags& f) {
-  StudyPlan plan;
-  if (!f.spec_file.empty()) {
-    if (!f.preset.empty()) throw std::invalid_argument("--spec: cannot be combined with --preset");
-    auto spec = job::parse_job_spec_json(read_file(f.spec_file), f.spec_file);
-    plan.title = "job spec " + f.spec_file;
-    plan.jobs.push_back(spec);
-  } else {
-    plan = make_preset(f.preset.empty() ? "seed001" : f.preset);
-  }
-
-  const bool changes_setup = !f.trajectory.empty() || !f.plant.empty() || !f.delay.empty() ||
-                             !f.uplink_delay.empty() || !f.loss.empty() || !f.uplink_loss.empty() ||
-                             !f.sample_period.empty() || !f.duration.empty() || !f.sensor.empty();
-  if (changes_setup) {
-    plan.paper.clear();
-    plan.title = "custom study (based on " + (f.spec_file.empty() ? "preset " + (f.preset.empty() ? std::string("seed001") : f.preset) : f.spec_file) + ")";
-  }
-
-  if (!f.controllers.empty()) {
-    const auto names = split_list(f.controllers);
-    if (names.empty()) throw std::invalid_argument("--controller: expected NAME[,NAME...]");
-    const netmc::v1::JobSpec base = plan.jobs.front();
-    plan.jobs.clear();
-    for (const auto& name : names) {
-      netmc::v1::JobSpec job = base;
-      job.mutable_controller()->set_name(name);
-      plan.jobs.push_back(job);
-    }
-  }
-
-  for (auto& job : plan.jobs) {
-    if (!f.trajectory.empty()) *job.mutable_trajectory() = parse_trajectory(f.trajectory);
-    if (!f.plant.empty()) job.set_plant(f.plant);
-    if (!f.delay.empty()) *job.mutable_downlink()->mutable_delay() = parse_delay(f.delay, "--delay");
-    if (!f.uplink_delay.empty()) {
-      *job.mutable_uplink()->mutable_delay() = parse_delay(f.uplink_delay, "--uplink-delay");
-    }
-    if (!f.loss.empty()) *job.mutable_downlink()->mutable_loss() = parse_loss(f.loss, "--loss");
-    if (!f.uplink_loss.empty()) {
-      *job.mutable_uplink()->mutable_loss() = parse_loss(f.uplink_loss, "--uplink-loss");
-    }
-    if (!f.sample_period.empty()) {
-      job.set_sample_period_s(parse_quantity(f.sample_period, Quantity::time, "--sample-period"));
-      if (!(job.sample_period_s() > 0.0)) {
-        throw std::invalid_argument("--sample-period: expected a positive duration such as 5ms");
-      }
-    }
-    if (!f.duration.empty()) job.set_duration_s(parse_quantity(f.duration, Quantity::time, "--duration"));
-    if (!f.deadline.empty()) job.set_deadline_s(parse_quantity(f.deadline, Quantity::time, "--deadline"));
-    if (!f.compute_delay.empty()) {
-      job.set_compute_delay_s(parse_quantity(f.compute_delay, Quantity::time, "--compute-delay"));
-    }
-    if (!f.divergence_limit.empty()) {
-      job.set_divergence_limit_m(parse_quantity(f.divergence_limit, Quantity::length, "--divergence-limit"));
-      if (!(job.divergence_limit_m() > 0.0)) {
-        throw std::invalid_argument("--divergence-limit: expected a positive length such as 50mm");
-      }
-    }
-    if (!f.command_limit.empty()) {
-      job.set_command_limit(parse_quantity(f.command_limit, Quantity::plain, "--command-limit"));
-      if (!(job.command_limit() > 0.0)) {
-        throw std::invalid_argument("--command-limit: expected a positive number");
-      }
-    }
-    if (f.iterations != 0) job.set_iterations(static_cast<std::uint32_t>(f.iterations));
-    if (f.seed >= 0) job.set_seed(static_cast<std::uint64_t>(f.seed));
-    if (!f.adrc.empty()) parse_adrc_gains(f.adrc, *job.mutable_controller()->mutable_adrc());
-    if (!f.ilc.empty()) parse_ilc_gains(f.ilc, *job.mutable_controller()->mutable_ilccc());
-    if (!f.pidccc.empty()) parse_pid_gains(f.pidccc, *job.mutable_controller()->mutable_pidccc(), "--pidccc");
-    if (!f.pid.empty()) parse_pid_gains(f.pid, *job.mutable_controller()->mutable_pid(), "--pid");
-    if (!f.estimator.empty()) job.mutable_controller()->set_estimator(f.estimator);
-    if (!f.sensor.empty()) {
-      // resolution=..,noise=.. (lengths)
-      for (const auto& item : split_list(f.sensor)) {
-        const auto equals = item.find('=');
-        const std::string key = item.substr(0, equals);
-        if (equals == std::string::npos || (key != "resolution" && key != "noise")) {
-          throw std::invalid_argument("--sensor: expected resolution=LENGTH,noise=LENGTH, got '" + item + "'");
-        }
-        const double value = parse_quantity(item.substr(equals + 1), Quantity::length, "--sensor " + key);
-        if (key == "resolution") job.mutable_sensor()->set_resolution_m(value);
-        if (key == "noise") job.mutable_sensor()->set_noise_stddev_m(value);
-      }
-    }
-    job::apply_defaults(job);
-  }
-  return plan;
-}
-
-}  // namespace
 
 std::function<int()> add_sim_command(CLI::App& app) {
-  auto flags = std::make_shared<SimFlags>();
+  struct Flags {
+    StudyFlags study;
+    std::string csv_dir;
+    unsigned threads = 0;
+  };
+  auto flags = std::make_shared<Flags>();
   CLI::App* sim = app.add_subcommand("sim", "Run a study in-process, in virtual time (default: --preset seed001)");
-  sim->add_option("--preset", flags->preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty");
-  sim->add_option("--spec", flags->spec_file, "Job spec as JSON (protobuf JSON mapping of netmc.v1.JobSpec)");
-  sim->add_option("--trajectory", flags->trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. | line:x0=..,y0=..,x1=..,y1=..,duration=..");
-  sim->add_option("--plant", flags->plant, "seed001 | ballscrew | linmotor | stage004");
-  sim->add_option("--controller", flags->controllers, "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc ...");
-  sim->add_option("--delay", flags->delay, "Loop delay on the controller->actuator link: none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=.. | pareto:scale=..,shape=.. | markov:good=A..B,bad=C..D,p_gb=..,p_bg=.. | trace:FILE.csv");
-  sim->add_option("--uplink-delay", flags->uplink_delay, "Sensor->controller delay (same forms as --delay)");
-  sim->add_option("--loss", flags->loss, "Setpoint loss: none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]");
-  sim->add_option("--uplink-loss", flags->uplink_loss, "Feedback loss (same forms as --loss)");
-  sim->add_option("--sample-period", flags->sample_period, "Sample period h, e.g. 5ms");
-  sim->add_option("--duration", flags->duration, "Run length per iteration (default: the trajectory's)");
-  sim->add_option("--deadline", flags->deadline, "How long the server waits for feedback (default: one period)");
-  sim->add_option("--compute-delay", flags->compute_delay, "Computation delay tau_cc in virtual time");
-  sim->add_option("--divergence-limit", flags->divergence_limit, "Contour error at which a run counts as unstable and stops (default 50mm)");
-  sim->add_option("--command-limit", flags->command_limit, "Command saturation |U| enforced at the axis (default: none)");
-  sim->add_option("--iterations", flags->iterations, "ILC iterations per run")->check(CLI::Range(1, 100000));
-  sim->add_option("--seed", flags->seed, "Random seed")->check(CLI::NonNegativeNumber);
-  sim->add_option("--adrc", flags->adrc, "ADRC gains: r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent");
-  sim->add_option("--ilc", flags->ilc, "ILC gains: kcp=..,kcd=..,forgetting=..,q=HZ,lead=SAMPLES");
-  sim->add_option("--pidccc", flags->pidccc, "PID cross-coupling gains: kp=..,ki=..,kd=..");
-  sim->add_option("--pid", flags->pid, "Per-axis PID gains: kp=..,ki=..,kd=..");
-  sim->add_option("--estimator", flags->estimator, "Contour-error estimator of the controller: curvature | tangent");
-  sim->add_option("--sensor", flags->sensor, "Position sensor: resolution=0.5um,noise=0.1um");
-  sim->add_option("--json", flags->json_path, "Write all iteration metrics as JSON");
+  add_study_flags(sim, flags->study);
   sim->add_option("--csv", flags->csv_dir, "Write per-cycle traces of each run's last iteration into DIR");
-  sim->add_flag("--curve", flags->curve, "Print e_sum per iteration (the learning curve)");
   sim->add_option("--threads", flags->threads, "Worker threads (default: all cores)");
 
   return [flags]() -> int {
-    const StudyPlan plan = plan_from_flags(*flags);
+    const StudyPlan plan = plan_from_flags(flags->study);
     const unsigned threads = flags->threads > 0 ? flags->threads
                                                 : std::max(1u, std::thread::hardware_concurrency());
     const auto outcomes = run_study_in_process(plan, !flags->csv_dir.empty(), threads);
     // Outputs are rendered completely before any file is written.
-    const std::string json = flags->json_path.empty() ? std::string() : study_json(outcomes);
-    if (!flags->json_path.empty()) write_file_atomically(flags->json_path, json);
+    const std::string json = flags->study.json_path.empty() ? std::string() : study_json(outcomes);
+    if (!flags->study.json_path.empty()) write_file_atomically(flags->study.json_path, json);
     if (!flags->csv_dir.empty()) write_trace_directory(flags->csv_dir, outcomes);
     print_study_table(std::cout, plan, outcomes);
-    if (flags->curve) print_learning_curve(std::cout, outcomes);
+    if (flags->study.curve) print_learning_curve(std::cout, outcomes);
     return 0;
   };
 }

@@ -28,18 +28,7 @@ std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_
         const auto& spec = plan.jobs[i];
         sim::ContourJobRunner runner(std::move(jobs[i]));
         RunOutcome& out = outcomes[i];
-        out.result.set_controller(spec.controller().name());
-        out.result.set_label(spec.name().empty() ? spec.controller().name() : spec.name());
-        out.result.set_plant(spec.plant());
-        out.result.set_trajectory(job::describe_trajectory(spec.trajectory()));
-        std::string delay = job::describe_link(spec.downlink());
-        if (spec.uplink().has_delay() || spec.uplink().has_loss()) {
-          delay = "up: " + job::describe_link(spec.uplink()) + "; down: " + delay;
-        }
-        out.result.set_delay(delay);
-        out.result.set_controller_detail(runner.controller_description());
-        out.result.set_sample_period_s(spec.sample_period_s());
-        out.result.set_seed(spec.seed());
+        out.result = job::describe_run(spec, runner.controller_description());
         runner.run_all([&](const sim::IterationRecord& record) {
           *out.result.add_iterations() = job::to_proto(record.metrics);
           if (record_traces) out.last_trace = record.trace;

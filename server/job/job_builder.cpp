@@ -276,6 +276,24 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   return out;
 }
 
+netmc::v1::RunResult describe_run(const netmc::v1::JobSpec& spec,
+                                  const std::string& controller_detail) {
+  netmc::v1::RunResult result;
+  result.set_controller(spec.controller().name());
+  result.set_label(spec.name().empty() ? spec.controller().name() : spec.name());
+  result.set_plant(spec.plant());
+  result.set_trajectory(describe_trajectory(spec.trajectory()));
+  std::string delay = describe_link(spec.downlink());
+  if (spec.uplink().has_delay() || spec.uplink().has_loss()) {
+    delay = "up: " + describe_link(spec.uplink()) + "; down: " + delay;
+  }
+  result.set_delay(delay);
+  result.set_controller_detail(controller_detail);
+  result.set_sample_period_s(spec.sample_period_s());
+  result.set_seed(spec.seed());
+  return result;
+}
+
 netmc::v1::JobSpec parse_job_spec_json(const std::string& json, const std::string& origin) {
   netmc::v1::JobSpec spec;
   google::protobuf::util::JsonParseOptions options;

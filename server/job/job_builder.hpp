@@ -19,6 +19,9 @@ std::string describe_trajectory(const netmc::v1::Trajectory& trajectory);
 std::string describe_link(const netmc::v1::LinkProfile& link);
 
 netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& metrics);
+// A RunResult with the description of `spec` filled in and no iterations yet.
+netmc::v1::RunResult describe_run(const netmc::v1::JobSpec& spec,
+                                  const std::string& controller_detail);
 
 // JSON through protobuf's JSON mapping, field names as in job.proto.
 netmc::v1::JobSpec parse_job_spec_json(const std::string& json, const std::string& origin);

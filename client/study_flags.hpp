@@ -1,0 +1,29 @@
+#pragma once
+// The study flags shared by `netmc sim` (in-process) and `netmc run` (against a server): a
+// preset or JSON spec, overridden by flags, becomes a StudyPlan.
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "client/presets.hpp"
+
+namespace netmc::cli {
+
+struct StudyFlags {
+  std::string preset;
+  std::string spec_file;
+  std::string trajectory, plant, controllers, delay, uplink_delay, loss, uplink_loss;
+  std::string sample_period, duration, deadline, compute_delay, divergence_limit, command_limit;
+  std::string adrc, ilc, pidccc, pid, estimator, sensor;
+  int iterations = 0;
+  long long seed = -1;
+  std::string json_path;
+  bool curve = false;
+};
+
+void add_study_flags(CLI::App* app, StudyFlags& flags);
+// Throws std::invalid_argument naming the flag or field.
+StudyPlan plan_from_flags(const StudyFlags& flags);
+
+}  // namespace netmc::cli
