@@ -6,12 +6,15 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "client/server_commands.hpp"
 #include "client/sim_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"netmc: networked motion control - studies of contouring under network delay"};
   app.require_subcommand(0, 1);
   const auto run_sim = netmc::cli::add_sim_command(app);
+  const auto run_run = netmc::cli::add_run_command(app);
+  const auto run_nodes = netmc::cli::add_nodes_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -22,12 +25,12 @@ int main(int argc, char** argv) {
     app.exit(e);
     return 2;
   }
-  if (!app.got_subcommand("sim")) {
+  try {
+    if (app.got_subcommand("sim")) return run_sim();
+    if (app.got_subcommand("run")) return run_run();
+    if (app.got_subcommand("nodes")) return run_nodes();
     std::cout << app.help();
     return 0;
-  }
-  try {
-    return run_sim();
   } catch (const std::invalid_argument& e) {
     std::cerr << "netmc: error: " << e.what() << "\n";
     return 2;

@@ -63,7 +63,7 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
   if (with_paper) {
     const auto* adrc = paper_row(plan, outcomes.front().result.controller());
     const auto* best = &plan.paper.back();
-    if (adrc) {
+    if (adrc && adrc == &plan.paper.front()) {
       fmt::print(out, "; {}: {} e_max/ref {:.3f}, e_sum/ref {:.3f}", plan.paper_source,
                  best->controller, best->e_max_m / adrc->e_max_m, best->e_sum_m / adrc->e_sum_m);
     }

@@ -1,0 +1,119 @@
+#include "client/server_commands.hpp"
+
+#include <fmt/format.h>
+
+#include <iostream>
+
+#include "client/study_flags.hpp"
+#include "client/study_report.hpp"
+#include "idl/management.pb.h"
+#include "server/management/management_client.hpp"
+
+namespace netmc::cli {
+namespace {
+
+constexpr auto kConnectTimeout = std::chrono::milliseconds(3000);
+
+// Waits for the response to `request_id`, skipping nothing: the server answers in order.
+netmc::v1::Response expect_response(management::ManagementClient& client,
+                                    std::chrono::milliseconds timeout,
+                                    const std::string& server) {
+  auto response = client.receive(timeout);
+  if (!response) throw std::runtime_error("server " + server + ": no answer within " +
+                                          std::to_string(timeout.count()) + " ms");
+  if (response->has_error()) throw std::runtime_error("server " + server + ": " + response->error().message());
+  return *response;
+}
+
+// Runs one job on the server; prints each iteration as it arrives.
+RunOutcome run_job(management::ManagementClient& client, const netmc::v1::JobSpec& spec,
+                   std::uint64_t request_id, const std::string& server, bool quiet) {
+  netmc::v1::Request request;
+  request.set_request_id(request_id);
+  *request.mutable_submit()->mutable_spec() = spec;
+  client.send(request);
+  const auto accepted = expect_response(client, std::chrono::seconds(30), server);
+  if (!accepted.has_accepted()) throw std::runtime_error("server " + server + ": unexpected answer to submit");
+  const std::uint64_t job_id = accepted.accepted().job_id();
+  const std::string label = spec.name().empty() ? spec.controller().name() : spec.name();
+  if (!quiet) std::cerr << fmt::format("job {} ({}) accepted by {}\n", job_id, label, server);
+  while (true) {
+    // An iteration takes seconds in realtime and milliseconds in lockstep; nodes may need
+    // discovery time first.
+    const auto response = expect_response(client, std::chrono::seconds(120), server);
+    if (response.has_iteration()) {
+      const auto& m = response.iteration().metrics();
+      if (!quiet) {
+        std::cerr << fmt::format("  [{}] iteration {}/{}  e_max {:.4f} mm  e_sum {:.3f} mm  tau mean {:.3f} ms\n",
+                                 label, m.iteration(), response.iteration().total_iterations(),
+                                 m.e_max_m() * 1e3, m.e_sum_m() * 1e3, m.tau_mean_s() * 1e3);
+      }
+    } else if (response.has_finished()) {
+      const auto& finished = response.finished();
+      if (finished.state() != "done") {
+        throw std::runtime_error(fmt::format("job {} ({}) {}: {}", job_id, label, finished.state(),
+                                             finished.error()));
+      }
+      RunOutcome outcome;
+      outcome.result = finished.result();
+      if (outcome.result.iterations_size() == 0) {
+        throw std::runtime_error(fmt::format("job {} ({}) finished without iterations", job_id, label));
+      }
+      return outcome;
+    }
+  }
+}
+
+}  // namespace
+
+std::function<int()> add_run_command(CLI::App& app) {
+  struct Flags {
+    StudyFlags study;
+    std::string server = "127.0.0.1:7400";
+    bool quiet = false;
+  };
+  auto flags = std::make_shared<Flags>();
+  CLI::App* run = app.add_subcommand(
+      "run", "Run a study on a netmc-server and its axis nodes (same flags and presets as sim)");
+  run->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT");
+  run->add_flag("--quiet", flags->quiet, "Print only the final table");
+  add_study_flags(run, flags->study);
+  return [flags]() -> int {
+    const StudyPlan plan = plan_from_flags(flags->study);
+    management::ManagementClient client(flags->server, kConnectTimeout);
+    std::vector<RunOutcome> outcomes;
+    std::uint64_t request_id = 1;
+    for (const auto& spec : plan.jobs) {
+      outcomes.push_back(run_job(client, spec, request_id++, flags->server, flags->quiet));
+    }
+    if (!flags->study.json_path.empty()) write_file_atomically(flags->study.json_path, study_json(outcomes));
+    print_study_table(std::cout, plan, outcomes);
+    if (flags->study.curve) print_learning_curve(std::cout, outcomes);
+    return 0;
+  };
+}
+
+std::function<int()> add_nodes_command(CLI::App& app) {
+  auto server = std::make_shared<std::string>("127.0.0.1:7400");
+  CLI::App* nodes = app.add_subcommand("nodes", "List the axis nodes a netmc-server has discovered");
+  nodes->add_option("--server", *server, "netmc-server management endpoint HOST:PORT");
+  return [server]() -> int {
+    management::ManagementClient client(*server, kConnectTimeout);
+    netmc::v1::Request request;
+    request.set_request_id(1);
+    request.mutable_nodes();
+    client.send(request);
+    const auto response = expect_response(client, std::chrono::seconds(10), *server);
+    fmt::print("{:<20} {:<6} {:<10} {:<9} {:>10}  {}\n", "node", "axes", "plant", "clock", "seen [s]", "health");
+    for (const auto& node : response.nodes().nodes()) {
+      std::string axes;
+      for (const auto& axis : node.axes()) axes += (axes.empty() ? "" : ",") + axis;
+      fmt::print("{:<20} {:<6} {:<10} {:<9} {:>10.1f}  {}\n", node.node(), axes, node.plant(),
+                 node.clock(), node.last_seen_s(), node.health());
+    }
+    if (response.nodes().nodes_size() == 0) fmt::print("(no axis node discovered)\n");
+    return 0;
+  };
+}
+
+}  // namespace netmc::cli

@@ -1,0 +1,78 @@
+// netmc-server: the central controller. Discovers axis nodes over DDS, runs submitted jobs on
+// them (lockstep, the same job runner as `netmc sim`) and serves the management endpoint
+// (Boost.Asio TCP, length-prefixed protobuf) for `netmc run` and `netmc nodes`.
+
+#include <CLI/CLI.hpp>
+#include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange unincluded
+
+#include <boost/asio.hpp>
+
+#include <iostream>
+
+#include "server/dds/dds_options_cli.hpp"
+#include "server/management/management_server.hpp"
+#include "server/service/job_service.hpp"
+#include "server/service/node_directory.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"netmc-server: closes contouring loops of remote axis nodes over DDS"};
+  std::string listen = "127.0.0.1:7400";
+  int axis_timeout_ms = 2000;
+  int discovery_timeout_ms = 10000;
+  netmc::dds::DdsOptions dds;
+  dds.name = "netmc-server";
+  app.add_option("--listen", listen, "Management endpoint HOST:PORT (port 0: any free port)");
+  app.add_option("--axis-timeout", axis_timeout_ms,
+                 "Milliseconds an axis may take to answer before the job fails")
+      ->check(CLI::Range(1, 600000));
+  app.add_option("--discovery-timeout", discovery_timeout_ms,
+                 "Milliseconds to wait for the axis nodes of a job")
+      ->check(CLI::Range(1, 600000));
+  netmc::dds::add_dds_options(app, dds);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return e.get_exit_code() == 0 ? code : 2;
+  }
+  const auto colon = listen.rfind(':');
+  int port = -1;
+  try {
+    if (colon != std::string::npos) port = std::stoi(listen.substr(colon + 1));
+  } catch (const std::exception&) {
+    port = -1;
+  }
+  if (colon == std::string::npos || port < 0 || port > 65535) {
+    std::cerr << "netmc-server: error: --listen: expected HOST:PORT, got '" << listen << "'\n";
+    return 2;
+  }
+  try {
+    netmc::dds::DdsContext context(dds);
+    netmc::service::NodeDirectory nodes(context);
+    netmc::service::JobService jobs(
+        context, nodes,
+        {std::chrono::milliseconds(axis_timeout_ms), std::chrono::milliseconds(discovery_timeout_ms)});
+    boost::asio::io_context io;
+    netmc::management::ManagementServer server(
+        io, listen.substr(0, colon), static_cast<std::uint16_t>(port),
+        {[&jobs](netmc::management::Session& session, const netmc::v1::Request& request) {
+          jobs.handle(session.shared_from_this(), request);
+        }});
+    boost::asio::signal_set signals(io, SIGINT, SIGTERM);
+    signals.async_wait([&](const boost::system::error_code&, int) {
+      server.stop();
+      io.stop();
+    });
+    std::cout << "netmc-server: listening on " << listen.substr(0, colon) << ":" << server.port()
+              << ", DDS domain " << dds.domain_id << " (" << context.describe_transport() << ")"
+              << std::endl;
+    io.run();
+    return 0;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "netmc-server: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "netmc-server: error: " << e.what() << "\n";
+    return 1;
+  }
+}

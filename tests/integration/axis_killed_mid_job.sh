@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# An axis process killed mid-job: the server fails the job with a clear error naming the axis,
+# the client exits non-zero with that message, the server and the other axis stay up.
+# Usage: axis_killed_mid_job.sh BUILD_DIR
+set -euo pipefail
+build=$1
+tmp=$(mktemp -d)
+domain=$(( 100 + RANDOM % 100 ))
+pids=()
+cleanup() {
+  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
+  wait 2>/dev/null || true
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+
+"$build/server/axis/netmc-axis" --node kill-x --axes x --domain "$domain" --transport udp >"$tmp/x.log" 2>&1 &
+x_pid=$!
+pids+=($x_pid)
+"$build/server/axis/netmc-axis" --node kill-y --axes y --domain "$domain" --transport udp >"$tmp/y.log" 2>&1 &
+y_pid=$!
+pids+=($y_pid)
+"$build/server/service/netmc-server" --listen 127.0.0.1:0 --axis-timeout 1000 --domain "$domain" \
+  --transport udp >"$tmp/server.log" 2>&1 &
+server_pid=$!
+pids+=($server_pid)
+port=""
+for _ in $(seq 100); do
+  port=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/server.log")
+  [ -n "$port" ] && break
+  sleep 0.1
+done
+[ -n "$port" ] || { echo "netmc-server did not start"; cat "$tmp/server.log"; exit 1; }
+
+( sleep 2; kill -9 "$y_pid" ) &
+start=$(date +%s%3N)
+set +e
+"$build/client/netmc" run --server "127.0.0.1:$port" --controller adrc+ilccc --iterations 200 \
+  >"$tmp/run.out" 2>"$tmp/run.err"
+rc=$?
+set -e
+end=$(date +%s%3N)
+cat "$tmp/run.err" | tail -3
+if [ "$rc" -eq 0 ]; then echo "FAIL: the job succeeded although axis y was killed"; exit 1; fi
+grep -q "axis y did not answer" "$tmp/run.err" || { echo "FAIL: no error naming axis y"; exit 1; }
+grep -q "job 1 failed: axis y did not answer" "$tmp/server.log" || { echo "FAIL: server log"; cat "$tmp/server.log"; exit 1; }
+kill -0 "$server_pid" || { echo "FAIL: netmc-server died"; exit 1; }
+kill -0 "$x_pid" || { echo "FAIL: the other axis died"; exit 1; }
+"$build/client/netmc" nodes --server "127.0.0.1:$port" >/dev/null || { echo "FAIL: server no longer answers"; exit 1; }
+echo "axis y killed at 2 s: job failed after $(( end - start )) ms with exit code $rc; server and axis x still up"

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# netmc-server and two netmc-axis processes (one per axis) on loopback, lockstep over DDS/UDP:
+# the paper-001 preset must give the same JSON, byte for byte, as `netmc sim` in-process.
+# Usage: lockstep_dds_vs_sim.sh BUILD_DIR [extra study flags...]
+set -euo pipefail
+build=$1
+shift
+tmp=$(mktemp -d)
+domain=$(( 100 + RANDOM % 100 ))
+pids=()
+cleanup() {
+  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
+  wait 2>/dev/null || true
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+
+"$build/server/axis/netmc-axis" --node it-x --axes x --domain "$domain" --transport udp >"$tmp/x.log" 2>&1 &
+pids+=($!)
+"$build/server/axis/netmc-axis" --node it-y --axes y --domain "$domain" --transport udp >"$tmp/y.log" 2>&1 &
+pids+=($!)
+"$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp >"$tmp/server.log" 2>&1 &
+pids+=($!)
+
+port=""
+for _ in $(seq 100); do
+  port=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/server.log")
+  [ -n "$port" ] && break
+  sleep 0.1
+done
+if [ -z "$port" ]; then
+  echo "netmc-server did not start:"; cat "$tmp/server.log"; exit 1
+fi
+
+"$build/client/netmc" run --server "127.0.0.1:$port" --quiet --json "$tmp/dds.json" "$@" >"$tmp/dds.txt"
+"$build/client/netmc" sim --json "$tmp/sim.json" "$@" >"$tmp/sim.txt"
+cat "$tmp/dds.txt"
+if cmp -s "$tmp/dds.json" "$tmp/sim.json"; then
+  echo "lockstep over DDS equals netmc sim: identical JSON ($(wc -c <"$tmp/sim.json") bytes)"
+else
+  echo "lockstep over DDS differs from netmc sim:"
+  diff "$tmp/sim.json" "$tmp/dds.json" | head -40
+  exit 1
+fi
