@@ -23,6 +23,13 @@ std::function<int()> add_sim_command(CLI::App& app) {
 
   return [flags]() -> int {
     const StudyPlan plan = plan_from_flags(flags->study);
+    for (const auto& job : plan.jobs) {
+      if (job.clock() == "realtime") {
+        throw std::invalid_argument(
+            "--clock: realtime needs netmc-server and axis nodes (netmc run); netmc sim runs in "
+            "virtual time");
+      }
+    }
     const unsigned threads = flags->threads > 0 ? flags->threads
                                                 : std::max(1u, std::thread::hardware_concurrency());
     const auto outcomes = run_study_in_process(plan, !flags->csv_dir.empty(), threads);

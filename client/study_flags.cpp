@@ -94,6 +94,7 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
         throw std::invalid_argument("--command-limit: expected a positive number");
       }
     }
+    if (!f.clock.empty()) job.set_clock(f.clock);
     if (f.iterations != 0) job.set_iterations(static_cast<std::uint32_t>(f.iterations));
     if (f.seed >= 0) job.set_seed(static_cast<std::uint64_t>(f.seed));
     if (!f.adrc.empty()) parse_adrc_gains(f.adrc, *job.mutable_controller()->mutable_adrc());
@@ -121,6 +122,9 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
 
 
 void add_study_flags(CLI::App* app, StudyFlags& flags) {
+  app->add_option("--clock", flags.clock,
+                  "Distributed runs: lockstep (virtual time, equals sim) or realtime (wall clock)")
+      ->check(CLI::IsMember({"lockstep", "realtime"}));
   app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty");
   app->add_option("--spec", flags.spec_file, "Job spec as JSON (protobuf JSON mapping of netmc.v1.JobSpec)");
   app->add_option("--trajectory", flags.trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. | line:x0=..,y0=..,x1=..,y1=..,duration=..");

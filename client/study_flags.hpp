@@ -18,6 +18,7 @@ struct StudyFlags {
   std::string adrc, ilc, pidccc, pid, estimator, sensor;
   int iterations = 0;
   long long seed = -1;
+  std::string clock;
   std::string json_path;
   bool curve = false;
 };

@@ -76,6 +76,15 @@ class DelayedChannel {
 
   std::size_t in_flight() const { return in_flight_.size(); }
 
+  // Arrival time of the message with `sequence` still in flight (a wall-clock loop uses it to
+  // know when to act).
+  std::optional<double> arrival_of(std::uint64_t sequence) const {
+    for (const Delivery& delivery : in_flight_) {
+      if (delivery.sequence == sequence) return delivery.arrival_time_s;
+    }
+    return std::nullopt;
+  }
+
   // Drops everything in flight, zeroes the counters and resets the link with a new stream.
   void reset(RandomStream rng) {
     in_flight_.clear();

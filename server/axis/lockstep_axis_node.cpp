@@ -24,12 +24,12 @@ LockstepAxisNode::LockstepAxisNode(dds::DdsContext& context, AxisNodeConfig conf
     : config_(std::move(config)),
       feedback_writer_(context.writer(
           context.topic<netmc::dds::FeedbackPubSubType>(dds::kFeedbackTopic),
-          dds::Delivery::lockstep_control)),
+          dds::Delivery::control)),
       status_writer_(context.writer(
           context.topic<netmc::dds::NodeStatusPubSubType>(dds::kNodeStatusTopic),
           dds::Delivery::status)),
       setpoints_(context.reader(context.topic<netmc::dds::SetpointPubSubType>(dds::kSetpointTopic),
-                                dds::Delivery::lockstep_control)) {
+                                dds::Delivery::control)) {
   for (const auto id : config_.axis_ids) axes_[id] = OwnedAxis{};
 }
 

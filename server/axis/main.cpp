@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "server/axis/lockstep_axis_node.hpp"
+#include "server/axis/realtime_axis_node.hpp"
 #include "server/dds/dds_options_cli.hpp"
 
 namespace {
@@ -46,8 +47,13 @@ int main(int argc, char** argv) {
   app.add_option("--node", config.node, "Unique node name (default axis-PID)");
   app.add_option("--axes", axes, "Axes this node hosts: x, y or x,y");
   app.add_option("--plant", config.plant, "Plant model: seed001, ballscrew, linmotor, stage004");
-  app.add_option("--clock", clock, "Clock mode: lockstep (virtual time, deterministic)")
-      ->check(CLI::IsMember({"lockstep"}));
+  int watchdog_ms = 50;
+  app.add_option("--clock", clock,
+                 "lockstep (virtual time, deterministic) or realtime (wall clock, Asio timer)")
+      ->check(CLI::IsMember({"lockstep", "realtime"}));
+  app.add_option("--watchdog", watchdog_ms,
+                 "Realtime: milliseconds without a setpoint before the axis holds (command 0)")
+      ->check(CLI::Range(1, 60000));
   netmc::dds::add_dds_options(app, dds);
   try {
     app.parse(argc, argv);
@@ -59,13 +65,16 @@ int main(int argc, char** argv) {
     config.axis_ids = parse_axes(axes);
     dds.name = config.node;
     netmc::dds::DdsContext context(dds);
-    netmc::axis::LockstepAxisNode node(context, config);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     std::cout << "netmc-axis " << config.node << ": axes " << axes << ", plant " << config.plant
               << ", clock " << clock << ", DDS domain " << dds.domain_id << " ("
               << context.describe_transport() << ")" << std::endl;
-    node.serve(g_stop);
+    if (clock == "realtime") {
+      netmc::axis::RealtimeAxisNode(context, config, std::chrono::milliseconds(watchdog_ms)).serve(g_stop);
+    } else {
+      netmc::axis::LockstepAxisNode(context, config).serve(g_stop);
+    }
     return 0;
   } catch (const std::invalid_argument& e) {
     std::cerr << "netmc-axis: error: " << e.what() << "\n";

@@ -18,7 +18,7 @@ void apply(Qos& qos, Delivery delivery) {
   qos.endpoint().history_memory_policy =
       eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   switch (delivery) {
-    case Delivery::lockstep_control:
+    case Delivery::control:
       // Reliable; keep-last 64 per axis rather than keep-all: lockstep has at most one sample
       // per axis in flight, and keep-all would fill the writer history (400 per instance)
       // between acknowledgements, which come only with the heartbeat.
@@ -26,12 +26,6 @@ void apply(Qos& qos, Delivery delivery) {
       qos.durability().kind = VOLATILE_DURABILITY_QOS;
       qos.history().kind = KEEP_LAST_HISTORY_QOS;
       qos.history().depth = 64;
-      break;
-    case Delivery::realtime_control:
-      qos.reliability().kind = BEST_EFFORT_RELIABILITY_QOS;
-      qos.durability().kind = VOLATILE_DURABILITY_QOS;
-      qos.history().kind = KEEP_LAST_HISTORY_QOS;
-      qos.history().depth = 1;
       break;
     case Delivery::log:
       qos.reliability().kind = RELIABLE_RELIABILITY_QOS;

@@ -1,8 +1,10 @@
 #pragma once
 // One DDS domain participant with the netmc topics, and typed writers/readers with the QoS of
-// each clock mode. Lockstep runs need every sample (the network is emulated by netsim, so the
-// transport must not lose or drop any): reliable, keep-last 64 per axis. Realtime control data is
-// best-effort, keep-last 1 per axis, as a control loop wants the newest value, not old ones.
+// each kind of data. Control data (setpoints, feedback) is reliable with keep-last 64 per axis
+// in both clock modes: lockstep needs every sample (the network is emulated by netsim, so the
+// transport must not lose any), and in realtime the iteration start/stop messages travel on the
+// same topic; a writer with keep-last never blocks, and stale commands are dropped at the axis
+// by sequence number.
 
 #include <fastdds/dds/core/condition/WaitSet.hpp>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
@@ -37,8 +39,7 @@ struct DdsOptions {
 };
 
 enum class Delivery {
-  lockstep_control,   // reliable, keep-last 64 per key, volatile
-  realtime_control,   // best-effort, keep-last 1 (per key)
+  control,            // reliable, keep-last 64 per key, volatile
   log,                // reliable, transient-local, keep-last 64
   status,             // reliable, transient-local, keep-last 1 (per key), automatic liveliness
 };

@@ -194,6 +194,9 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   job.downlink = build_link(spec.downlink(), "downlink");
   job.sensor.resolution_m = spec.sensor().resolution_m();
   job.sensor.noise_stddev_m = spec.sensor().noise_stddev_m();
+  if (!spec.clock().empty() && spec.clock() != "lockstep" && spec.clock() != "realtime") {
+    throw std::invalid_argument("clock: expected 'lockstep' or 'realtime', got '" + spec.clock() + "'");
+  }
   job.sample_period_s = spec.sample_period_s();
   job.duration_s = spec.duration_s();
   job.iterations = spec.iterations();

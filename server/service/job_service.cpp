@@ -7,6 +7,7 @@
 #include "server/dds/topics.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/service/lockstep_dds_runner.hpp"
+#include "server/service/realtime_dds_runner.hpp"
 
 namespace netmc::service {
 namespace {
@@ -35,9 +36,9 @@ JobService::JobService(dds::DdsContext& context, NodeDirectory& nodes, JobServic
       nodes_(nodes),
       options_(options),
       setpoints_(context.writer(context.topic<netmc::dds::SetpointPubSubType>(dds::kSetpointTopic),
-                                dds::Delivery::lockstep_control)),
+                                dds::Delivery::control)),
       feedback_(context.reader(context.topic<netmc::dds::FeedbackPubSubType>(dds::kFeedbackTopic),
-                               dds::Delivery::lockstep_control)),
+                               dds::Delivery::control)),
       iteration_logs_(context.writer(
           context.topic<netmc::dds::IterationLogPubSubType>(dds::kIterationLogTopic),
           dds::Delivery::log)),
@@ -168,6 +169,11 @@ void JobService::run(Job& job) {
                          " was discovered within " +
                          std::to_string(options_.discovery_timeout.count()) + " ms");
       }
+      const std::string clock = job.spec.clock().empty() ? "lockstep" : job.spec.clock();
+      if (node->status.clock() != clock) {
+        throw JobFailure("node " + node->status.node() + " runs the " + node->status.clock() +
+                         " clock but the job needs " + clock);
+      }
       if (node->status.plant() != job.spec.plant()) {
         throw JobFailure("node " + node->status.node() + " hosts plant '" + node->status.plant() +
                          "' but the job needs '" + job.spec.plant() + "'");
@@ -178,25 +184,30 @@ void JobService::run(Job& job) {
                                options_.discovery_timeout)) {
       throw JobFailure("axis nodes were discovered but their setpoint readers did not match");
     }
-    LockstepDdsRunner runner({setpoints_, &feedback_, iteration_logs_}, job.spec, job.id,
-                             options_.axis_timeout);
-    *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
-    runner.run(
-        [&](const sim::IterationRecord& record) {
-          const auto metrics = job::to_proto(record.metrics);
-          *done.mutable_result()->add_iterations() = metrics;
-          {
-            std::lock_guard lock(mutex_);
-            job.status.set_iterations_done(static_cast<std::uint32_t>(record.metrics.iteration));
-          }
-          netmc::v1::Response update;
-          auto& iteration = *update.mutable_iteration();
-          iteration.set_job_id(job.id);
-          iteration.set_total_iterations(job.spec.iterations());
-          *iteration.mutable_metrics() = metrics;
-          reply(job, update);
-        },
-        job.cancel);
+    const auto on_iteration = [&](const sim::IterationRecord& record) {
+      const auto metrics = job::to_proto(record.metrics);
+      *done.mutable_result()->add_iterations() = metrics;
+      {
+        std::lock_guard lock(mutex_);
+        job.status.set_iterations_done(static_cast<std::uint32_t>(record.metrics.iteration));
+      }
+      netmc::v1::Response update;
+      auto& iteration = *update.mutable_iteration();
+      iteration.set_job_id(job.id);
+      iteration.set_total_iterations(job.spec.iterations());
+      *iteration.mutable_metrics() = metrics;
+      reply(job, update);
+    };
+    const JobChannels channels{setpoints_, &feedback_, iteration_logs_};
+    if (job.spec.clock() == "realtime") {
+      RealtimeDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout);
+      *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
+      runner.run(on_iteration, job.cancel);
+    } else {
+      LockstepDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout);
+      *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
+      runner.run(on_iteration, job.cancel);
+    }
     if (job.cancel.load()) state = "cancelled";
   } catch (const std::exception& error) {
     state = job.cancel.load() ? "cancelled" : "failed";

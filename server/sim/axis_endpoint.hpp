@@ -38,6 +38,8 @@ class AxisEndpoint {
   // Integrate to `end_time_s`, applying the setpoints that arrive on the way.
   std::vector<AppliedSetpoint> advance_to(double end_time_s);
 
+  void hold() { axis_.hold(); }
+
   std::uint64_t lost_setpoints() const { return lost_; }
   std::uint64_t stale_setpoints() const { return axis_.stale_setpoints(); }
 

@@ -73,6 +73,17 @@ void ContourServer::submit_feedback(std::size_t axis, std::uint64_t cycle, doubl
   }
 }
 
+double ContourServer::compute_time(std::uint64_t cycle) const {
+  const double t = static_cast<double>(cycle) * job_.sample_period_s;
+  double ready = t;
+  for (const auto& uplink : uplinks_) {
+    const auto arrival = uplink.arrival_of(cycle);
+    if (!arrival || *arrival > t + job_.deadline()) return std::max(compute_time_, t + job_.deadline());
+    ready = std::max(ready, *arrival);
+  }
+  return std::max(compute_time_, ready);
+}
+
 CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   IterationMetrics& m = record_.metrics;
   const double t = static_cast<double>(cycle) * job_.sample_period_s;

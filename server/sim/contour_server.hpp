@@ -31,6 +31,9 @@ class ContourServer {
   // Feedback `cycle` of `axis`, sampled at `sample_time_s`, enters the uplink.
   void submit_feedback(std::size_t axis, std::uint64_t cycle, double sample_time_s,
                        const AxisSample& sample);
+  // When cycle k will be computed (virtual time): when the last feedback k arrives through the
+  // uplink, or at the deadline. A wall-clock server waits until then.
+  double compute_time(std::uint64_t cycle) const;
   // Computes cycle k once the feedback of cycle k has been submitted for every axis.
   CycleCommand compute_cycle(std::uint64_t cycle);
   // Setpoints applied by `axis`, for the loop-delay statistics.

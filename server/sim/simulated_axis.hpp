@@ -22,6 +22,8 @@ class SimulatedAxis {
                 double command_limit);
 
   void reset(double position);
+  // Watchdog: no setpoint in time, so the drive is commanded to stand still.
+  void hold() { input_ = 0.0; }
   double measure();                                  // sampled position at the current time
   // Integrate to `end_time_s` applying the setpoints delivered in (now, end] in arrival order.
   void advance_to(double end_time_s, const std::vector<Delivery>& deliveries);
