@@ -82,6 +82,10 @@ void LockstepAxisNode::handle(const Setpoint& setpoint) {
   switch (setpoint.kind()) {
     case netmc::dds::SETPOINT_BEGIN_ITERATION: {
       if (!setpoint.job_spec().empty()) {
+        // A new server may not have matched our feedback yet; samples sent before that are lost.
+        if (!dds::wait_for_readers(feedback_writer_, 1, std::chrono::seconds(5))) {
+          throw std::runtime_error("no server reads this node's feedback");
+        }
         netmc::v1::JobSpec spec;
         if (!spec.ParseFromArray(setpoint.job_spec().data(),
                                  static_cast<int>(setpoint.job_spec().size()))) {

@@ -261,6 +261,7 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   out.set_e_rms_m(m.e_rms_m);
   out.set_e_sum_m(m.e_sum_m);
   out.set_tau_mean_s(m.tau_mean_s);
+  out.set_tau_p50_s(m.tau_p50_s);
   out.set_tau_p99_s(m.tau_p99_s);
   out.set_tau_max_s(m.tau_max_s);
   out.set_tau_sc_mean_s(m.tau_sc_mean_s);

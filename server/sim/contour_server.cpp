@@ -50,6 +50,8 @@ Eigen::Vector2d ContourServer::begin_iteration(std::size_t iteration) {
   record_.metrics.iteration = iteration;
   if (job_.record_traces) record_.trace.resize(cycles_);
   server_measurement_ = start;
+  true_position_ = start;  // until the first feedback (a realtime cycle may run without it)
+  measured_ = start;
   newest_sequence_.assign(uplinks_.size(), -1);
   tau_.clear();
   tau_.reserve(cycles_ * uplinks_.size());
@@ -181,6 +183,7 @@ IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
   m.stale_setpoints = stale_setpoints;
   m.tau_mean_s = mean(tau_);
   m.tau_max_s = tau_.empty() ? 0.0 : *std::max_element(tau_.begin(), tau_.end());
+  m.tau_p50_s = percentile(tau_, 0.50);
   m.tau_p99_s = percentile(tau_, 0.99);
   m.tau_sc_mean_s = mean(tau_sc_);
   m.tau_ca_mean_s = mean(tau_ca_);

@@ -16,6 +16,7 @@ struct IterationMetrics {
   std::array<double, 2> tracking_max_m{};
   std::array<double, 2> command_rms{};
   double tau_mean_s = 0.0;               // loop delay t_arrival(setpoint k) - t_k
+  double tau_p50_s = 0.0;
   double tau_p99_s = 0.0;
   double tau_max_s = 0.0;
   double tau_sc_mean_s = 0.0;            // sensor -> controller part
