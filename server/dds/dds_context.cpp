@@ -5,6 +5,7 @@
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 
+#include <filesystem>
 #include <thread>
 
 namespace netmc::dds {
@@ -47,11 +48,15 @@ void apply(Qos& qos, Delivery delivery) {
 
 DdsContext::DdsContext(const DdsOptions& options) {
   auto* factory = DomainParticipantFactory::get_instance();
+  if (!options.xml_profile_file.empty() && !std::filesystem::is_regular_file(options.xml_profile_file)) {
+    throw std::invalid_argument("--dds-profile: no such file '" + options.xml_profile_file + "'");
+  }
   if (!options.xml_profile_file.empty() &&
       factory->load_XML_profiles_file(options.xml_profile_file) != ReturnCode_t::RETCODE_OK) {
     throw std::invalid_argument("--dds-profile: cannot load Fast DDS XML profiles from '" +
                                 options.xml_profile_file + "'");
   }
+  xml_loaded_ = !options.xml_profile_file.empty();
   if (!options.participant_profile.empty()) {
     participant_ = factory->create_participant_with_profile(options.domain_id,
                                                             options.participant_profile);
@@ -87,7 +92,12 @@ DdsContext::~DdsContext() {
 
 DataWriter* DdsContext::writer(Topic* topic, Delivery delivery) {
   DataWriterQos qos = DATAWRITER_QOS_DEFAULT;
-  apply(qos, delivery);
+  // An XML <data_writer profile_name="TOPIC"> replaces the built-in QoS of that topic.
+  if (!xml_loaded_ ||
+      publisher_->get_datawriter_qos_from_profile(topic->get_name(), qos) != ReturnCode_t::RETCODE_OK) {
+    qos = DATAWRITER_QOS_DEFAULT;
+    apply(qos, delivery);
+  }
   auto* created = publisher_->create_datawriter(topic, qos);
   if (!created) throw std::runtime_error("dds: cannot create a writer for " + topic->get_name());
   return created;
@@ -95,7 +105,12 @@ DataWriter* DdsContext::writer(Topic* topic, Delivery delivery) {
 
 DataReader* DdsContext::reader(Topic* topic, Delivery delivery) {
   DataReaderQos qos = DATAREADER_QOS_DEFAULT;
-  apply(qos, delivery);
+  // An XML <data_reader profile_name="TOPIC"> replaces the built-in QoS of that topic.
+  if (!xml_loaded_ ||
+      subscriber_->get_datareader_qos_from_profile(topic->get_name(), qos) != ReturnCode_t::RETCODE_OK) {
+    qos = DATAREADER_QOS_DEFAULT;
+    apply(qos, delivery);
+  }
   auto* created = subscriber_->create_datareader(topic, qos);
   if (!created) throw std::runtime_error("dds: cannot create a reader for " + topic->get_name());
   return created;

@@ -66,6 +66,7 @@ class DdsContext {
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
   std::string transport_description_;
+  bool xml_loaded_ = false;
 };
 
 template <typename PubSubType>

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # netmc-server and two netmc-axis processes (one per axis) on loopback, lockstep over DDS/UDP:
 # the paper-001 preset must give the same JSON, byte for byte, as `netmc sim` in-process.
-# Usage: lockstep_dds_vs_sim.sh BUILD_DIR [extra study flags...]
+# Usage: [DDS_ARGS="..."] lockstep_dds_vs_sim.sh BUILD_DIR [extra study flags...]
+# DDS_ARGS replaces the DDS transport flags of the server and axes (default: --transport udp).
 set -euo pipefail
 build=$1
 shift
 tmp=$(mktemp -d)
 domain=$(( 100 + RANDOM % 100 ))
+read -r -a dds_args <<<"${DDS_ARGS:---transport udp}"
 pids=()
 cleanup() {
   for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
@@ -15,11 +17,11 @@ cleanup() {
 }
 trap cleanup EXIT
 
-"$build/server/axis/netmc-axis" --node it-x --axes x --domain "$domain" --transport udp >"$tmp/x.log" 2>&1 &
+"$build/server/axis/netmc-axis" --node it-x --axes x --domain "$domain" "${dds_args[@]}" >"$tmp/x.log" 2>&1 &
 pids+=($!)
-"$build/server/axis/netmc-axis" --node it-y --axes y --domain "$domain" --transport udp >"$tmp/y.log" 2>&1 &
+"$build/server/axis/netmc-axis" --node it-y --axes y --domain "$domain" "${dds_args[@]}" >"$tmp/y.log" 2>&1 &
 pids+=($!)
-"$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp >"$tmp/server.log" 2>&1 &
+"$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" "${dds_args[@]}" >"$tmp/server.log" 2>&1 &
 pids+=($!)
 
 port=""
