@@ -200,7 +200,8 @@ void JobService::run(Job& job) {
     };
     const JobChannels channels{setpoints_, &feedback_, iteration_logs_};
     if (job.spec.clock() == "realtime") {
-      RealtimeDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout);
+      RealtimeDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout,
+                               options_.missed_cycles_limit);
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
       runner.run(on_iteration, job.cancel);
     } else {

@@ -22,6 +22,7 @@ namespace netmc::service {
 struct JobServiceOptions {
   std::chrono::milliseconds axis_timeout{2000};       // per lockstep exchange
   std::chrono::milliseconds discovery_timeout{10000}; // waiting for the nodes of a job
+  std::uint32_t missed_cycles_limit = 20;             // realtime: periods without feedback
 };
 
 class JobService {

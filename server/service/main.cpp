@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   std::string listen = "127.0.0.1:7400";
   int axis_timeout_ms = 2000;
   int discovery_timeout_ms = 10000;
+  std::uint32_t missed_cycles = 20;
   netmc::dds::DdsOptions dds;
   dds.name = "netmc-server";
   app.add_option("--listen", listen, "Management endpoint HOST:PORT (port 0: any free port)");
@@ -28,6 +29,9 @@ int main(int argc, char** argv) {
   app.add_option("--discovery-timeout", discovery_timeout_ms,
                  "Milliseconds to wait for the axis nodes of a job")
       ->check(CLI::Range(1, 600000));
+  app.add_option("--missed-cycles", missed_cycles,
+                 "Realtime: periods without feedback from an axis before the job fails")
+      ->check(CLI::Range(1, 1000000));
   netmc::dds::add_dds_options(app, dds);
   try {
     app.parse(argc, argv);
@@ -51,7 +55,8 @@ int main(int argc, char** argv) {
     netmc::service::NodeDirectory nodes(context);
     netmc::service::JobService jobs(
         context, nodes,
-        {std::chrono::milliseconds(axis_timeout_ms), std::chrono::milliseconds(discovery_timeout_ms)});
+        {std::chrono::milliseconds(axis_timeout_ms), std::chrono::milliseconds(discovery_timeout_ms),
+         missed_cycles});
     boost::asio::io_context io;
     netmc::management::ManagementServer server(
         io, listen.substr(0, colon), static_cast<std::uint16_t>(port),

@@ -25,12 +25,14 @@ constexpr double kStartLeadS = 0.25;
 }  // namespace
 
 RealtimeDdsRunner::RealtimeDdsRunner(JobChannels channels, const netmc::v1::JobSpec& spec,
-                                     std::uint64_t job_id, std::chrono::milliseconds axis_timeout)
+                                     std::uint64_t job_id, std::chrono::milliseconds axis_timeout,
+                                     std::uint32_t missed_cycles_limit)
     : channels_(channels),
       job_(job::build_contour_job(spec)),
       server_(job_),
       publisher_(channels.setpoints, spec, job_id),
-      axis_timeout_(axis_timeout) {}
+      axis_timeout_(axis_timeout),
+      missed_cycles_limit_(missed_cycles_limit) {}
 
 void RealtimeDdsRunner::submit(const netmc::dds::Feedback& feedback, double start_monotonic_s) {
   const std::size_t axis = feedback.axis_id();
@@ -86,16 +88,16 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
         publisher_.publish(axis, iteration, 0, netmc::dds::SETPOINT_BEGIN_ITERATION, 0.0, 0.0,
                            start[static_cast<Eigen::Index>(axis)], iteration == 1, t0);
       }
-      std::vector<Clock::time_point> last_heard(axes, Clock::now());
+      std::vector<std::size_t> last_heard(axes, 0);  // cycle of each axis's newest feedback
       bool stopped_early = false;
       for (std::size_t k = 0; k < cycles; ++k) {
         const double t = static_cast<double>(k) * h;
         gather(iteration, k, t0, at_monotonic(t0 + t + job_.deadline()));
         for (std::uint32_t axis = 0; axis < axes; ++axis) {
-          if (received_.count({k, axis})) last_heard[axis] = Clock::now();
-          if (Clock::now() - last_heard[axis] > axis_timeout_) {
+          if (received_.count({k, axis})) last_heard[axis] = k;
+          if (k - last_heard[axis] > missed_cycles_limit_) {
             throw JobFailure("axis " + axis_name(axis) + " sent no feedback for " +
-                             std::to_string(axis_timeout_.count()) + " ms (cycle " +
+                             std::to_string(k - last_heard[axis]) + " periods (cycle " +
                              std::to_string(k) + " of iteration " + std::to_string(iteration) +
                              "; node stopped or unreachable)");
           }

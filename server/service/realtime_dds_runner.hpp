@@ -16,8 +16,9 @@ namespace netmc::service {
 
 class RealtimeDdsRunner {
  public:
+  // An axis that sends no feedback for `missed_cycles_limit` periods fails the job.
   RealtimeDdsRunner(JobChannels channels, const netmc::v1::JobSpec& spec, std::uint64_t job_id,
-                    std::chrono::milliseconds axis_timeout);
+                    std::chrono::milliseconds axis_timeout, std::uint32_t missed_cycles_limit);
 
   void run(const std::function<void(const sim::IterationRecord&)>& on_iteration,
            const std::atomic<bool>& cancel);
@@ -34,6 +35,7 @@ class RealtimeDdsRunner {
   sim::ContourServer server_;
   SetpointPublisher publisher_;
   std::chrono::milliseconds axis_timeout_;
+  std::uint32_t missed_cycles_limit_;
   // Per iteration: which samples are in, finals, counters.
   std::map<std::pair<std::uint64_t, std::uint32_t>, bool> received_;
   std::vector<netmc::dds::Feedback> finals_;
