@@ -44,9 +44,12 @@ RunOutcome run_job(management::ManagementClient& client, const netmc::v1::JobSpe
     if (response.has_iteration()) {
       const auto& m = response.iteration().metrics();
       if (!quiet) {
-        std::cerr << fmt::format("  [{}] iteration {}/{}  e_max {:.4f} mm  e_sum {:.3f} mm  tau mean {:.3f} ms\n",
-                                 label, m.iteration(), response.iteration().total_iterations(),
-                                 m.e_max_m() * 1e3, m.e_sum_m() * 1e3, m.tau_mean_s() * 1e3);
+        std::cerr << fmt::format(
+            "  [{}] iteration {}/{}  e_max {:.4f} mm  e_sum {:.3f} mm  tau mean/p99/max {:.3f}/{:.3f}/{:.3f} ms"
+            " (sc {:.3f}, cc {:.3f}, ca {:.3f} ms mean)\n",
+            label, m.iteration(), response.iteration().total_iterations(), m.e_max_m() * 1e3,
+            m.e_sum_m() * 1e3, m.tau_mean_s() * 1e3, m.tau_p99_s() * 1e3, m.tau_max_s() * 1e3,
+            m.tau_sc_mean_s() * 1e3, m.tau_cc_mean_s() * 1e3, m.tau_ca_mean_s() * 1e3);
       }
     } else if (response.has_finished()) {
       const auto& finished = response.finished();

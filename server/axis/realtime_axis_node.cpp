@@ -118,6 +118,7 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
       axis.next_cycle = 0;
       axis.last_setpoint_s = 0.0;
       axis.holding = false;
+      axis.server_send_times.clear();
       schedule(axis, id);
       return;
     }
@@ -126,6 +127,7 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
       // The setpoint leaves for the actuator now: netsim's downlink delay starts here.
       const double now = monotonic_now_s() - axis.start_monotonic_s;
       axis.endpoint->submit_setpoint(now, setpoint.cycle(), setpoint.command());
+      axis.server_send_times[setpoint.cycle()] = setpoint.send_time_s();
       axis.last_setpoint_s = now;
       axis.holding = false;
       return;
@@ -168,9 +170,15 @@ void RealtimeAxisNode::tick(std::uint32_t axis_id) {
     for (const auto& a : axis.endpoint->advance_to(t)) {
       netmc::dds::AppliedSetpoint applied;
       applied.cycle(a.sequence);
-      applied.send_time_s(a.send_time_s);
+      const auto sent = axis.server_send_times.find(a.sequence);
+      applied.send_time_s(sent != axis.server_send_times.end() ? sent->second : a.send_time_s);
       applied.arrival_time_s(a.arrival_time_s);
       feedback.applied().push_back(applied);
+    }
+    // Setpoints older than the newest applied one can no longer act.
+    if (!feedback.applied().empty()) {
+      axis.server_send_times.erase(axis.server_send_times.begin(),
+                                   axis.server_send_times.upper_bound(feedback.applied().back().cycle()));
     }
   }
   // Watchdog: a running axis without setpoints stands still rather than keep the last command.

@@ -36,6 +36,9 @@ class RealtimeAxisNode {
     std::uint64_t next_cycle = 0;
     double last_setpoint_s = 0.0;   // job time of the last setpoint received
     bool holding = false;
+    // Server departure time of each setpoint in flight: tau_ca then includes the real DDS
+    // latency, not only the emulated part that starts when the sample reaches this node.
+    std::map<std::uint64_t, double> server_send_times;
     std::unique_ptr<boost::asio::steady_timer> timer;
   };
 

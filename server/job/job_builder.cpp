@@ -265,7 +265,14 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   out.set_tau_p99_s(m.tau_p99_s);
   out.set_tau_max_s(m.tau_max_s);
   out.set_tau_sc_mean_s(m.tau_sc_mean_s);
+  out.set_tau_sc_p99_s(m.tau_sc_p99_s);
+  out.set_tau_sc_max_s(m.tau_sc_max_s);
+  out.set_tau_cc_mean_s(m.tau_cc_mean_s);
+  out.set_tau_cc_p99_s(m.tau_cc_p99_s);
+  out.set_tau_cc_max_s(m.tau_cc_max_s);
   out.set_tau_ca_mean_s(m.tau_ca_mean_s);
+  out.set_tau_ca_p99_s(m.tau_ca_p99_s);
+  out.set_tau_ca_max_s(m.tau_ca_max_s);
   for (std::size_t axis = 0; axis < 2; ++axis) {
     out.add_tracking_rms_m(m.tracking_rms_m[axis]);
     out.add_tracking_max_m(m.tracking_max_m[axis]);

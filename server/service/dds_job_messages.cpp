@@ -74,6 +74,15 @@ void publish_iteration_log(eprosima::fastdds::dds::DataWriter* writer, std::uint
   log.tau_mean_s(m.tau_mean_s);
   log.tau_p99_s(m.tau_p99_s);
   log.tau_max_s(m.tau_max_s);
+  log.tau_sc_mean_s(m.tau_sc_mean_s);
+  log.tau_sc_p99_s(m.tau_sc_p99_s);
+  log.tau_sc_max_s(m.tau_sc_max_s);
+  log.tau_cc_mean_s(m.tau_cc_mean_s);
+  log.tau_cc_p99_s(m.tau_cc_p99_s);
+  log.tau_cc_max_s(m.tau_cc_max_s);
+  log.tau_ca_mean_s(m.tau_ca_mean_s);
+  log.tau_ca_p99_s(m.tau_ca_p99_s);
+  log.tau_ca_max_s(m.tau_ca_max_s);
   log.deadline_misses(static_cast<std::uint32_t>(m.deadline_misses));
   log.lost_feedback(static_cast<std::uint32_t>(m.lost_feedback));
   log.lost_setpoints(static_cast<std::uint32_t>(m.lost_setpoints));

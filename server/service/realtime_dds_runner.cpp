@@ -104,16 +104,19 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
         }
         // Act when the emulated uplink delivers (or at the deadline), as ContourServer decides.
         std::this_thread::sleep_until(at_monotonic(t0 + server_.compute_time(k)));
+        const auto ready = Clock::now();
         const sim::CycleCommand command = server_.compute_cycle(k);
         if (command.diverged || cancel.load()) {
           stopped_early = !command.diverged;
           break;
         }
-        const double now = monotonic_s(Clock::now()) - t0;
+        const auto departure = Clock::now();
+        const double now = monotonic_s(departure) - t0;
         for (std::uint32_t axis = 0; axis < axes; ++axis) {
           publisher_.publish(axis, iteration, k, netmc::dds::SETPOINT_COMMAND,
                              command.command[static_cast<Eigen::Index>(axis)], now, 0.0, false, 0.0);
         }
+        server_.correct_compute_delay(std::chrono::duration<double>(departure - ready).count());
       }
       for (std::uint32_t axis = 0; axis < axes; ++axis) {
         publisher_.publish(axis, iteration, cycles, netmc::dds::SETPOINT_END_ITERATION, 0.0, 0.0,

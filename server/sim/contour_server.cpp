@@ -56,6 +56,7 @@ Eigen::Vector2d ContourServer::begin_iteration(std::size_t iteration) {
   tau_.clear();
   tau_.reserve(cycles_ * uplinks_.size());
   tau_sc_.clear();
+  tau_cc_.clear();
   tau_ca_.clear();
   squared_error_sum_ = 0.0;
   tracking_squares_ = {};
@@ -119,6 +120,7 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   const control::ContouringCycle step = controller_.step(cycle, reference, server_measurement_);
   out.command = step.command;
   out.send_time_s = compute_time_ + job_.compute_delay_s;
+  tau_cc_.push_back(job_.compute_delay_s);
 
   // Metrics from the true plant state and the exact contour.
   const double contour_error = job_.trajectory->contour_error(true_position_);
@@ -157,6 +159,10 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   return out;
 }
 
+void ContourServer::correct_compute_delay(double measured_s) {
+  if (!tau_cc_.empty()) tau_cc_.back() = measured_s;
+}
+
 void ContourServer::record_applied(std::size_t axis, const std::vector<AppliedSetpoint>& applied) {
   for (const auto& a : applied) {
     const double loop_delay =
@@ -185,8 +191,15 @@ IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
   m.tau_max_s = tau_.empty() ? 0.0 : *std::max_element(tau_.begin(), tau_.end());
   m.tau_p50_s = percentile(tau_, 0.50);
   m.tau_p99_s = percentile(tau_, 0.99);
-  m.tau_sc_mean_s = mean(tau_sc_);
-  m.tau_ca_mean_s = mean(tau_ca_);
+  const auto summarize = [](const std::vector<double>& values, double& mean_s, double& p99_s,
+                            double& max_s) {
+    mean_s = mean(values);
+    p99_s = percentile(values, 0.99);
+    max_s = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+  };
+  summarize(tau_sc_, m.tau_sc_mean_s, m.tau_sc_p99_s, m.tau_sc_max_s);
+  summarize(tau_cc_, m.tau_cc_mean_s, m.tau_cc_p99_s, m.tau_cc_max_s);
+  summarize(tau_ca_, m.tau_ca_mean_s, m.tau_ca_p99_s, m.tau_ca_max_s);
   controller_.end_iteration();
   return std::move(record_);
 }

@@ -36,6 +36,9 @@ class ContourServer {
   double compute_time(std::uint64_t cycle) const;
   // Computes cycle k once the feedback of cycle k has been submitted for every axis.
   CycleCommand compute_cycle(std::uint64_t cycle);
+  // A wall-clock server measures the computation delay of the cycle just computed (from the
+  // last feedback's arrival to the setpoints' departure); virtual time uses the job's value.
+  void correct_compute_delay(double measured_s);
   // Setpoints applied by `axis`, for the loop-delay statistics.
   void record_applied(std::size_t axis, const std::vector<AppliedSetpoint>& applied);
   // Closes the iteration; `lost` and `stale` are the axes' downlink counters.
@@ -56,7 +59,7 @@ class ContourServer {
   Eigen::Vector2d true_position_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d measured_ = Eigen::Vector2d::Zero();
   std::vector<std::int64_t> newest_sequence_;
-  std::vector<double> tau_, tau_sc_, tau_ca_;
+  std::vector<double> tau_, tau_sc_, tau_cc_, tau_ca_;
   double squared_error_sum_ = 0.0;
   std::array<double, 2> tracking_squares_{}, command_squares_{};
   double compute_time_ = 0.0;

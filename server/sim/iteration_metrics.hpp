@@ -19,8 +19,11 @@ struct IterationMetrics {
   double tau_p50_s = 0.0;
   double tau_p99_s = 0.0;
   double tau_max_s = 0.0;
-  double tau_sc_mean_s = 0.0;            // sensor -> controller part
-  double tau_ca_mean_s = 0.0;            // controller -> actuator part
+  // The parts of tau: sensor -> controller (incl. waiting for the slowest axis's feedback),
+  // computation, controller -> actuator.
+  double tau_sc_mean_s = 0.0, tau_sc_p99_s = 0.0, tau_sc_max_s = 0.0;
+  double tau_cc_mean_s = 0.0, tau_cc_p99_s = 0.0, tau_cc_max_s = 0.0;
+  double tau_ca_mean_s = 0.0, tau_ca_p99_s = 0.0, tau_ca_max_s = 0.0;
   std::uint64_t deadline_misses = 0;     // cycles computed without fresh feedback of every axis
   std::uint64_t lost_feedback = 0;
   std::uint64_t lost_setpoints = 0;
