@@ -4,6 +4,7 @@
 # Usage: axis_killed_mid_job.sh BUILD_DIR [lockstep|realtime]
 # Realtime: the server must notice within a few periods (--missed-cycles 10 at h = 5 ms).
 set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 build=$1
 clock=${2:-lockstep}
 tmp=$(mktemp -d)

@@ -4,6 +4,7 @@
 # Usage: [DDS_ARGS="..."] lockstep_dds_vs_sim.sh BUILD_DIR [extra study flags...]
 # DDS_ARGS replaces the DDS transport flags of the server and axes (default: --transport udp).
 set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 build=$1
 shift
 tmp=$(mktemp -d)

@@ -4,6 +4,7 @@
 # ADRC) within 5 iterations. Prints the measured loop-delay statistics.
 # Usage: realtime_ilc.sh BUILD_DIR
 set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 build=$1
 tmp=$(mktemp -d)
 domain=$(( 100 + RANDOM % 100 ))

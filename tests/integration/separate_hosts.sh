@@ -6,6 +6,7 @@
 # Needs root and `ip netns`; exits 77 (skipped) where that is not permitted.
 # Usage: separate_hosts.sh BUILD_DIR [extra study flags...]
 set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 build=$(cd "$1" && pwd)
 shift
 if [ "$(id -u)" -ne 0 ] || ! command -v ip >/dev/null; then
