@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
   }
   try {
     config.axis_ids = parse_axes(axes);
+    config.clock = clock;
     dds.name = config.node;
     netmc::dds::DdsContext context(dds);
     std::signal(SIGINT, on_signal);

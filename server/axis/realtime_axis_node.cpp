@@ -2,10 +2,6 @@
 
 #include <thread>
 
-#include "dds_typesPubSubTypes.h"
-#include "idl/job.pb.h"
-#include "server/dds/topics.hpp"
-#include "server/job/job_builder.hpp"
 
 namespace netmc::axis {
 
@@ -24,41 +20,21 @@ std::chrono::steady_clock::time_point at_monotonic(double seconds) {
 
 RealtimeAxisNode::RealtimeAxisNode(dds::DdsContext& context, AxisNodeConfig config,
                                    std::chrono::milliseconds watchdog)
-    : config_(std::move(config)),
-      watchdog_(watchdog),
-      feedback_writer_(context.writer(
-          context.topic<netmc::dds::FeedbackPubSubType>(dds::kFeedbackTopic),
-          dds::Delivery::control)),
-      status_writer_(context.writer(
-          context.topic<netmc::dds::NodeStatusPubSubType>(dds::kNodeStatusTopic),
-          dds::Delivery::status)),
-      setpoints_(context.reader(context.topic<netmc::dds::SetpointPubSubType>(dds::kSetpointTopic),
-                                dds::Delivery::control)) {
-  for (const auto id : config_.axis_ids) axes_[id] = OwnedAxis{};
-}
-
-void RealtimeAxisNode::publish_status(netmc::dds::NodeHealth health, const std::string& detail) {
-  netmc::dds::NodeStatus status;
-  status.node(config_.node);
-  status.axis_ids(config_.axis_ids);
-  status.plant(config_.plant);
-  status.clock("realtime");
-  status.health(health);
-  status.detail(detail);
-  status_writer_->write(&status);
+    : link_(context, std::move(config)), watchdog_(watchdog) {
+  for (const auto id : link_.config().axis_ids) axes_[id] = OwnedAxis{};
 }
 
 void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
-  publish_status(netmc::dds::NODE_IDLE, "ready");
+  link_.publish_status(netmc::dds::NODE_IDLE, "ready");
   // DDS samples are taken on this thread and handled on the io thread, with the timers.
   std::thread dds_thread([&] {
     while (!stop.load()) {
-      if (auto setpoint = setpoints_.take(std::chrono::milliseconds(100))) {
+      if (auto setpoint = link_.setpoints().take(std::chrono::milliseconds(100))) {
         boost::asio::post(io_, [this, s = *setpoint] {
           try {
             handle(s);
           } catch (const std::exception& error) {
-            publish_status(netmc::dds::NODE_FAULT,
+            link_.publish_status(netmc::dds::NODE_FAULT,
                            "job " + std::to_string(s.job_id()) + ": " + error.what());
             for (auto& [id, axis] : axes_) axis.endpoint.reset();
           }
@@ -73,7 +49,7 @@ void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
       running = running || axis.endpoint != nullptr;
       holding = holding || axis.holding;
     }
-    publish_status(holding ? netmc::dds::NODE_HOLD
+    link_.publish_status(holding ? netmc::dds::NODE_HOLD
                            : running ? netmc::dds::NODE_RUNNING : netmc::dds::NODE_IDLE,
                    holding ? "watchdog: no setpoint in time, holding" : running ? "running a job" : "ready");
     if (stop.load()) {
@@ -96,19 +72,7 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   switch (setpoint.kind()) {
     case netmc::dds::SETPOINT_BEGIN_ITERATION: {
       if (!setpoint.job_spec().empty()) {
-        // A new server may not have matched our feedback yet; samples sent before that are lost.
-        if (!dds::wait_for_readers(feedback_writer_, 1, std::chrono::seconds(5))) {
-          throw std::runtime_error("no server reads this node's feedback");
-        }
-        netmc::v1::JobSpec spec;
-        if (!spec.ParseFromArray(setpoint.job_spec().data(), static_cast<int>(setpoint.job_spec().size()))) {
-          throw std::invalid_argument("malformed job spec");
-        }
-        const sim::ContourJob job = job::build_contour_job(spec);
-        axis.endpoint = std::make_unique<sim::AxisEndpoint>(job.axes.at(id)->clone(), job, id);
-        axis.job_id = setpoint.job_id();
-        axis.cycles = job.cycles();
-        axis.sample_period_s = job.sample_period_s;
+        static_cast<JobAxis&>(axis) = link_.start_job(setpoint);
         axis.timer = std::make_unique<boost::asio::steady_timer>(io_);
       }
       if (!axis.endpoint || axis.job_id != setpoint.job_id()) return;
@@ -164,13 +128,11 @@ void RealtimeAxisNode::tick(std::uint32_t axis_id) {
   feedback.axis_id(axis_id);
   feedback.job_id(axis.job_id);
   feedback.iteration(axis.iteration);
-  feedback.cycle(k);
-  feedback.kind(netmc::dds::FEEDBACK_SAMPLE);
   if (k > 0) {
     for (const auto& a : axis.endpoint->advance_to(t)) {
       netmc::dds::AppliedSetpoint applied;
       applied.cycle(a.sequence);
-      const auto sent = axis.server_send_times.find(a.sequence);
+      const auto sent = axis.server_send_times.find(a.sequence);  // see server_send_times
       applied.send_time_s(sent != axis.server_send_times.end() ? sent->second : a.send_time_s);
       applied.arrival_time_s(a.arrival_time_s);
       feedback.applied().push_back(applied);
@@ -186,13 +148,10 @@ void RealtimeAxisNode::tick(std::uint32_t axis_id) {
     axis.endpoint->hold();
     axis.holding = true;
   }
-  const sim::AxisSample sample = axis.endpoint->sample();
-  feedback.position_m(sample.measured_m);
-  feedback.true_position_m(sample.true_position_m);
-  feedback.sample_time_s(t);
+  set_sample(feedback, k, t, axis.endpoint->sample());
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
   feedback.stale_setpoints(axis.endpoint->stale_setpoints());
-  feedback_writer_->write(&feedback);
+  link_.publish(feedback);
   ++axis.next_cycle;
   if (axis.next_cycle < axis.cycles) schedule(axis, axis_id);
 }
@@ -206,7 +165,7 @@ void RealtimeAxisNode::publish_final(std::uint32_t axis_id, OwnedAxis& axis) {
   feedback.kind(netmc::dds::FEEDBACK_FINAL);
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
   feedback.stale_setpoints(axis.endpoint->stale_setpoints());
-  feedback_writer_->write(&feedback);
+  link_.publish(feedback);
 }
 
 }  // namespace netmc::axis

@@ -13,9 +13,7 @@
 #include <memory>
 
 #include "dds_types.h"
-#include "server/axis/lockstep_axis_node.hpp"
-#include "server/dds/dds_context.hpp"
-#include "server/sim/axis_endpoint.hpp"
+#include "server/axis/axis_node_link.hpp"
 
 namespace netmc::axis {
 
@@ -26,12 +24,8 @@ class RealtimeAxisNode {
   void serve(const std::atomic<bool>& stop);
 
  private:
-  struct OwnedAxis {
-    std::unique_ptr<sim::AxisEndpoint> endpoint;
-    std::uint64_t job_id = 0;
+  struct OwnedAxis : JobAxis {
     std::uint32_t iteration = 0;
-    std::size_t cycles = 0;
-    double sample_period_s = 0.0;
     double start_monotonic_s = 0.0;
     std::uint64_t next_cycle = 0;
     double last_setpoint_s = 0.0;   // job time of the last setpoint received
@@ -46,14 +40,10 @@ class RealtimeAxisNode {
   void tick(std::uint32_t axis_id);
   void schedule(OwnedAxis& axis, std::uint32_t axis_id);
   void publish_final(std::uint32_t axis_id, OwnedAxis& axis);
-  void publish_status(netmc::dds::NodeHealth health, const std::string& detail);
 
   boost::asio::io_context io_;
-  AxisNodeConfig config_;
+  AxisNodeLink link_;
   std::chrono::milliseconds watchdog_;
-  eprosima::fastdds::dds::DataWriter* feedback_writer_;
-  eprosima::fastdds::dds::DataWriter* status_writer_;
-  dds::SampleReader<netmc::dds::Setpoint> setpoints_;
   std::map<std::uint32_t, OwnedAxis> axes_;
 };
 

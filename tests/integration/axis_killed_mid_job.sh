@@ -7,33 +7,16 @@ set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 build=$1
 clock=${2:-lockstep}
-tmp=$(mktemp -d)
-domain=$(( 100 + RANDOM % 100 ))
-pids=()
-cleanup() {
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  wait 2>/dev/null || true
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
+source "$(dirname "$0")/lib.sh"
 
-"$build/server/axis/netmc-axis" --node kill-x --axes x --clock "$clock" --domain "$domain" --transport udp >"$tmp/x.log" 2>&1 &
-x_pid=$!
-pids+=($x_pid)
-"$build/server/axis/netmc-axis" --node kill-y --axes y --clock "$clock" --domain "$domain" --transport udp >"$tmp/y.log" 2>&1 &
-y_pid=$!
-pids+=($y_pid)
-"$build/server/service/netmc-server" --listen 127.0.0.1:0 --axis-timeout 1000 --missed-cycles 10 --domain "$domain" \
-  --transport udp >"$tmp/server.log" 2>&1 &
-server_pid=$!
-pids+=($server_pid)
-port=""
-for _ in $(seq 100); do
-  port=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/server.log")
-  [ -n "$port" ] && break
-  sleep 0.1
-done
-[ -n "$port" ] || { echo "netmc-server did not start"; cat "$tmp/server.log"; exit 1; }
+start x "$build/server/axis/netmc-axis" --node kill-x --axes x --clock "$clock" --domain "$domain" --transport udp
+x_pid=${pids[-1]}
+start y "$build/server/axis/netmc-axis" --node kill-y --axes y --clock "$clock" --domain "$domain" --transport udp
+y_pid=${pids[-1]}
+start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --axis-timeout 1000 \
+  --missed-cycles 10 --domain "$domain" --transport udp
+server_pid=${pids[-1]}
+port=$(server_port 127.0.0.1)
 
 ( sleep 2; kill -9 "$y_pid"; date +%s%3N >"$tmp/killed_at" ) &
 set +e

@@ -7,33 +7,13 @@ set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 build=$1
 shift
-tmp=$(mktemp -d)
-domain=$(( 100 + RANDOM % 100 ))
+source "$(dirname "$0")/lib.sh"
 read -r -a dds_args <<<"${DDS_ARGS:---transport udp}"
-pids=()
-cleanup() {
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  wait 2>/dev/null || true
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
 
-"$build/server/axis/netmc-axis" --node it-x --axes x --domain "$domain" "${dds_args[@]}" >"$tmp/x.log" 2>&1 &
-pids+=($!)
-"$build/server/axis/netmc-axis" --node it-y --axes y --domain "$domain" "${dds_args[@]}" >"$tmp/y.log" 2>&1 &
-pids+=($!)
-"$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" "${dds_args[@]}" >"$tmp/server.log" 2>&1 &
-pids+=($!)
-
-port=""
-for _ in $(seq 100); do
-  port=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/server.log")
-  [ -n "$port" ] && break
-  sleep 0.1
-done
-if [ -z "$port" ]; then
-  echo "netmc-server did not start:"; cat "$tmp/server.log"; exit 1
-fi
+start x "$build/server/axis/netmc-axis" --node it-x --axes x --domain "$domain" "${dds_args[@]}"
+start y "$build/server/axis/netmc-axis" --node it-y --axes y --domain "$domain" "${dds_args[@]}"
+start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" "${dds_args[@]}"
+port=$(server_port 127.0.0.1)
 
 "$build/client/netmc" run --server "127.0.0.1:$port" --quiet --json "$tmp/dds.json" "$@" >"$tmp/dds.txt"
 "$build/client/netmc" sim --json "$tmp/sim.json" "$@" >"$tmp/sim.txt"

@@ -6,31 +6,14 @@
 set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 build=$1
-tmp=$(mktemp -d)
-domain=$(( 100 + RANDOM % 100 ))
-pids=()
-cleanup() {
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  wait 2>/dev/null || true
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
+source "$(dirname "$0")/lib.sh"
 
 for axis in x y; do
-  "$build/server/axis/netmc-axis" --node rt-$axis --axes $axis --clock realtime --domain "$domain" \
-    --transport udp >"$tmp/$axis.log" 2>&1 &
-  pids+=($!)
+  start "$axis" "$build/server/axis/netmc-axis" --node rt-$axis --axes $axis --clock realtime \
+    --domain "$domain" --transport udp
 done
-"$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
-  >"$tmp/server.log" 2>&1 &
-pids+=($!)
-port=""
-for _ in $(seq 100); do
-  port=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/server.log")
-  [ -n "$port" ] && break
-  sleep 0.1
-done
-[ -n "$port" ] || { echo "netmc-server did not start"; cat "$tmp/server.log"; exit 1; }
+start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+port=$(server_port 127.0.0.1)
 
 "$build/client/netmc" run --server "127.0.0.1:$port" --clock realtime --controller adrc+ilccc \
   --iterations 5 --curve --json "$tmp/rt.json"

@@ -18,16 +18,9 @@ hosts=(srv ax ay)
 if ! ip netns add "$bridge_ns" 2>/dev/null; then
   echo "skipped: creating network namespaces is not permitted here"; exit 77
 fi
-tmp=$(mktemp -d)
-pids=()
-cleanup() {
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  wait 2>/dev/null || true
-  for h in "${hosts[@]}"; do ip netns del "$tag$h" 2>/dev/null || true; done
-  ip netns del "$bridge_ns" 2>/dev/null || true
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
+source "$(dirname "$0")/lib.sh"
+extra_cleanup+=('for h in "${hosts[@]}"; do ip netns del "$tag$h" 2>/dev/null; done'
+                'ip netns del "$bridge_ns" 2>/dev/null')
 
 ip -n "$bridge_ns" link add br0 type bridge
 ip -n "$bridge_ns" link set br0 up
@@ -46,20 +39,10 @@ for h in "${hosts[@]}"; do
 done
 
 run_in() { local ns=$tag$1; shift; ip netns exec "$ns" "$@"; }
-run_in ax "$build/server/axis/netmc-axis" --node host-x --axes x --transport udp >"$tmp/x.log" 2>&1 &
-pids+=($!)
-run_in ay "$build/server/axis/netmc-axis" --node host-y --axes y --transport udp >"$tmp/y.log" 2>&1 &
-pids+=($!)
-run_in srv "$build/server/service/netmc-server" --listen 10.77.0.1:0 --transport udp \
-  >"$tmp/server.log" 2>&1 &
-pids+=($!)
-port=""
-for _ in $(seq 100); do
-  port=$(sed -n 's/.*listening on 10.77.0.1:\([0-9]*\).*/\1/p' "$tmp/server.log")
-  [ -n "$port" ] && break
-  sleep 0.1
-done
-[ -n "$port" ] || { echo "netmc-server did not start"; cat "$tmp/server.log"; exit 1; }
+start x run_in ax "$build/server/axis/netmc-axis" --node host-x --axes x --transport udp
+start y run_in ay "$build/server/axis/netmc-axis" --node host-y --axes y --transport udp
+start server run_in srv "$build/server/service/netmc-server" --listen 10.77.0.1:0 --transport udp
+port=$(server_port 10.77.0.1)
 
 run_in ay "$build/client/netmc" nodes --server "10.77.0.1:$port"
 run_in ay "$build/client/netmc" run --server "10.77.0.1:$port" --quiet --json "$tmp/dds.json" "$@" >"$tmp/dds.txt"
