@@ -6,6 +6,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "client/cee_command.hpp"
 #include "client/server_commands.hpp"
 #include "client/sim_command.hpp"
 
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   const auto run_sim = netmc::cli::add_sim_command(app);
   const auto run_run = netmc::cli::add_run_command(app);
   const auto run_nodes = netmc::cli::add_nodes_command(app);
+  const auto run_cee = netmc::cli::add_cee_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -29,6 +31,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("sim")) return run_sim();
     if (app.got_subcommand("run")) return run_run();
     if (app.got_subcommand("nodes")) return run_nodes();
+    if (app.got_subcommand("cee")) return run_cee();
     std::cout << app.help();
     return 0;
   } catch (const std::invalid_argument& e) {

@@ -1,0 +1,33 @@
+#pragma once
+// Foot point of a point P on a desired motion C(t): the time t* whose position is nearest to P,
+// solving (C(t) - P) . C'(t) = 0. The contour error is |P - C(t*)|. Three ways (paper 002, sec. 4):
+//   Newton:     t+ = phi(t) = t - (C(t) - P) . C'(t) / |C'(t)|^2   (digest 3.4, linear convergence)
+//   Steffensen: t+ = t - (phi(t) - t)^2 / (phi(phi(t)) - 2 phi(t) + t)   (paper 002, eq. 46)
+//   exact:      global search over the whole curve, then refinement (ground truth).
+
+#include <Eigen/Dense>
+
+#include "control/reference_trajectory.hpp"
+
+namespace netmc::control {
+
+struct FootPoint {
+  double time_s = 0.0;       // t*
+  double distance_m = 0.0;   // |P - C(t*)|
+  int iterations = 0;        // updates of t (the exact search reports 0)
+};
+
+struct FootPointOptions {
+  double tolerance_s = 1e-9;  // stop when |t+ - t| < tolerance (digest 3.7 [A])
+  int max_iterations = 20;
+};
+
+// Local iterations from the warm start `t0` (e.g. the desired time, or the previous estimate).
+FootPoint newton_foot_point(const ReferenceTrajectory& curve, const Eigen::Vector2d& point,
+                            double t0, const FootPointOptions& options = {});
+FootPoint steffensen_foot_point(const ReferenceTrajectory& curve, const Eigen::Vector2d& point,
+                                double t0, const FootPointOptions& options = {});
+// Global: dense sampling of [0, duration], then golden-section refinement around the best.
+FootPoint exact_foot_point(const ReferenceTrajectory& curve, const Eigen::Vector2d& point);
+
+}  // namespace netmc::control
