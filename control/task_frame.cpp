@@ -1,0 +1,139 @@
+#include "control/task_frame.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "control/foot_point.hpp"
+#include "control/parameter_check.hpp"
+
+namespace netmc::control {
+namespace {
+
+constexpr int kArcTableSize = 8192;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+double wrap_angle(double angle) {
+  const double wrapped = std::fmod(angle, kTwoPi);
+  return wrapped < 0.0 ? wrapped + kTwoPi : wrapped;
+}
+
+// Linear interpolation in a table sampled uniformly over [0, span].
+double interpolate(const std::vector<double>& table, double span, double x) {
+  const double position = std::clamp(x / span, 0.0, 1.0) * static_cast<double>(table.size() - 1);
+  const auto i = std::min(static_cast<std::size_t>(position), table.size() - 2);
+  const double f = position - static_cast<double>(i);
+  return table[i] + f * (table[i + 1] - table[i]);
+}
+
+// Cumulative arc length of a speed function sampled on a uniform grid (trapezoid rule).
+template <typename Speed>
+std::vector<double> arc_table(double span, Speed&& speed) {
+  std::vector<double> table(kArcTableSize + 1, 0.0);
+  const double step = span / kArcTableSize;
+  double previous = speed(0.0);
+  for (int i = 1; i <= kArcTableSize; ++i) {
+    const double current = speed(step * i);
+    table[static_cast<std::size_t>(i)] = table[static_cast<std::size_t>(i - 1)] + 0.5 * step * (previous + current);
+    previous = current;
+  }
+  return table;
+}
+
+}  // namespace
+
+CircleTaskFrame::CircleTaskFrame(const Eigen::Vector2d& center, double radius)
+    : center_(center), radius_(require_positive(radius, "circle r")) {}
+
+TaskCoordinates CircleTaskFrame::at(const Eigen::Vector2d& q) const {
+  // thesis, eq. 2-34..2-36 (digest 2.1 [D] for J)
+  const Eigen::Vector2d d = q - center_;
+  const double rho = d.norm();
+  if (rho <= 0.0) throw std::invalid_argument("circle task frame: undefined at the centre");
+  TaskCoordinates r;
+  r.rc = rho - radius_;
+  r.rm = radius_ * wrap_angle(std::atan2(d.y(), d.x()));
+  r.jacobian << d.x() / rho, d.y() / rho, -radius_ * d.y() / (rho * rho), radius_ * d.x() / (rho * rho);
+  return r;
+}
+
+EllipseTaskFrame::EllipseTaskFrame(const Eigen::Vector2d& center, double semi_axis_x,
+                                   double semi_axis_y)
+    : center_(center),
+      a_(require_positive(semi_axis_x, "ellipse a")),
+      b_(require_positive(semi_axis_y, "ellipse b")) {
+  arc_table_ = arc_table(kTwoPi, [&](double nu) {
+    return std::sqrt(a_ * a_ * std::sin(nu) * std::sin(nu) + b_ * b_ * std::cos(nu) * std::cos(nu));
+  });
+}
+
+double EllipseTaskFrame::arc_length(double nu) const { return interpolate(arc_table_, kTwoPi, wrap_angle(nu)); }
+
+double EllipseTaskFrame::rc(const Eigen::Vector2d& p) const {
+  // thesis, eq. 2-42: rc = sqrt(g2)/sqrt(h2) (sqrt(g2) - b), g2 = gamma^2 x^2 + y^2,
+  // h2 = gamma^4 x^2 + y^2, gamma = b/a
+  const double gamma2 = (b_ / a_) * (b_ / a_);
+  const double g = std::sqrt(gamma2 * p.x() * p.x() + p.y() * p.y());
+  const double h = std::sqrt(gamma2 * gamma2 * p.x() * p.x() + p.y() * p.y());
+  return g / h * (g - b_);
+}
+
+double EllipseTaskFrame::parameter(const Eigen::Vector2d& p) const {
+  // thesis, eq. 2-21: project along grad f onto the contour (f = u - 1, u^2 = x^2/a^2 + y^2/b^2),
+  // then the arc length of the projected point's parameter (digest 2.12 [A]: branch by atan2).
+  const double u = std::sqrt(p.x() * p.x() / (a_ * a_) + p.y() * p.y() / (b_ * b_));
+  const Eigen::Vector2d grad(p.x() / (a_ * a_ * u), p.y() / (b_ * b_ * u));
+  const Eigen::Vector2d projected = p - (u - 1.0) * grad / grad.squaredNorm();
+  return std::atan2(projected.y() / b_, projected.x() / a_);
+}
+
+TaskCoordinates EllipseTaskFrame::at(const Eigen::Vector2d& q) const {
+  const Eigen::Vector2d p = q - center_;
+  if (p.norm() <= 0.0) throw std::invalid_argument("ellipse task frame: undefined at the centre");
+  TaskCoordinates r;
+  r.rc = rc(p);
+  const double nu = parameter(p);
+  r.rm = arc_length(nu);
+  // grad rc, analytic: rc = N / h with N = g^2 - b g.
+  const double gamma2 = (b_ / a_) * (b_ / a_);
+  const double g = std::sqrt(gamma2 * p.x() * p.x() + p.y() * p.y());
+  const double h = std::sqrt(gamma2 * gamma2 * p.x() * p.x() + p.y() * p.y());
+  const double n = g * g - b_ * g;
+  const Eigen::Vector2d grad_n(2 * gamma2 * p.x() - b_ * gamma2 * p.x() / g, 2 * p.y() - b_ * p.y() / g);
+  const Eigen::Vector2d grad_h(gamma2 * gamma2 * p.x() / h, p.y() / h);
+  const Eigen::Vector2d grad_rc = (grad_n * h - n * grad_h) / (h * h);
+  // grad rm = s'(nu) grad nu: s' analytic, grad nu by central differences across the seam.
+  const double step = 1e-7 * std::max(a_, b_);
+  const auto difference = [&](const Eigen::Vector2d& offset) {
+    return std::remainder(parameter(p + offset) - parameter(p - offset), kTwoPi) / (2.0 * step);
+  };
+  const double speed = std::sqrt(a_ * a_ * std::sin(nu) * std::sin(nu) + b_ * b_ * std::cos(nu) * std::cos(nu));
+  r.jacobian.row(0) = grad_rc.transpose();
+  r.jacobian.row(1) << speed * difference({step, 0.0}), speed * difference({0.0, step});
+  return r;
+}
+
+NumericalTaskFrame::NumericalTaskFrame(std::shared_ptr<const ReferenceTrajectory> contour)
+    : contour_(std::move(contour)) {
+  if (!contour_) throw std::invalid_argument("task frame: missing contour");
+  arc_table_ = arc_table(contour_->duration_s(),
+                         [&](double t) { return contour_->sample(t).velocity.norm(); });
+}
+
+TaskCoordinates NumericalTaskFrame::at(const Eigen::Vector2d& q) const {
+  const FootPoint foot = exact_foot_point(*contour_, q);
+  const ReferencePoint c = contour_->sample(foot.time_s);
+  const double speed = c.velocity.norm();
+  if (speed <= 0.0) throw std::invalid_argument("task frame: the foot point is a cusp (no tangent)");
+  const Eigen::Vector2d tangent = c.velocity / speed;
+  const Eigen::Vector2d normal(tangent.y(), -tangent.x());  // right of travel
+  TaskCoordinates r;
+  r.rc = (q - c.position).dot(normal) >= 0.0 ? foot.distance_m : -foot.distance_m;
+  r.rm = interpolate(arc_table_, contour_->duration_s(), foot.time_s);
+  r.jacobian.row(0) = normal.transpose();
+  r.jacobian.row(1) = tangent.transpose();
+  return r;
+}
+
+}  // namespace netmc::control
