@@ -23,6 +23,7 @@ class CircleTrajectory final : public ReferenceTrajectory {
   double contour_error(const Eigen::Vector2d& point) const override;  // paper 001, eq. 12
   std::unique_ptr<ReferenceTrajectory> clone() const override;
   std::string describe() const override;
+  const CircleParameters& parameters() const { return p_; }
 
  private:
   CircleParameters p_;

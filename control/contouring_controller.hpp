@@ -8,20 +8,14 @@
 #include <vector>
 
 #include "control/axis_controller.hpp"
+#include "control/contour_controller.hpp"
 #include "control/contour_compensator.hpp"
 #include "control/contour_error_estimator.hpp"
 #include "control/reference_trajectory.hpp"
 
 namespace netmc::control {
 
-struct ContouringCycle {
-  Eigen::Vector2d command = Eigen::Vector2d::Zero();       // U, sent to the axes
-  Eigen::Vector2d axis_command = Eigen::Vector2d::Zero();  // u of the per-axis controllers
-  double coupling_command = 0.0;                           // u_e
-  ContourErrorEstimate estimate;
-};
-
-class ContouringController {
+class ContouringController final : public ContourController {
  public:
   ContouringController(std::unique_ptr<AxisController> x_axis,
                        std::unique_ptr<AxisController> y_axis,
@@ -31,13 +25,13 @@ class ContouringController {
   ContouringController& operator=(const ContouringController&) = delete;
 
   // Start of an iteration with the axes at rest at `initial_position`, `samples` cycles long.
-  void begin_iteration(const Eigen::Vector2d& initial_position, std::size_t samples);
+  void begin_iteration(const Eigen::Vector2d& initial_position, std::size_t samples) override;
   // Cycle k: reference point and measured axis positions in, commands out (paper 001, sec. 1.5).
   ContouringCycle step(std::size_t cycle, const ReferencePoint& reference,
-                       const Eigen::Vector2d& measured);
-  void end_iteration();
+                       const Eigen::Vector2d& measured) override;
+  void end_iteration() override;
 
-  std::string describe() const;
+  std::string describe() const override;
   const ContourCompensator& compensator() const { return *compensator_; }
 
  private:

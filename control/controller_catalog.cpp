@@ -6,8 +6,8 @@ namespace netmc::control {
 namespace {
 
 std::string usage() {
-  return "expected AXIS or AXIS+COMPENSATOR with AXIS one of adrc, pid and COMPENSATOR one of "
-         "pidccc, ilccc";
+  return "expected gtcf-sarc, ltcf-sarc, AXIS or AXIS+COMPENSATOR with AXIS one of adrc, pid and "
+         "COMPENSATOR one of pidccc, ilccc";
 }
 
 std::unique_ptr<AxisController> make_axis(std::string_view name, const ControllerSettings& s,
@@ -47,6 +47,17 @@ ContouringController make_contouring_controller(std::string_view name,
   return ContouringController(std::move(x_axis), std::move(y_axis),
                               make_contour_error_estimator(settings.estimator),
                               std::move(compensator));
+}
+
+std::unique_ptr<ContourController> make_contour_controller(std::string_view name,
+                                                           const ControllerSettings& settings,
+                                                           double sample_period_s,
+                                                           const ReferenceTrajectory& trajectory) {
+  if (name == "gtcf-sarc") {
+    return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, make_task_frame(trajectory));
+  }
+  if (name == "ltcf-sarc") return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, nullptr);
+  return std::make_unique<ContouringController>(make_contouring_controller(name, settings, sample_period_s));
 }
 
 }  // namespace netmc::control

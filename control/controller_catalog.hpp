@@ -10,6 +10,7 @@
 #include "control/iterative_learning_cross_coupling.hpp"
 #include "control/pid_axis_controller.hpp"
 #include "control/pid_cross_coupling.hpp"
+#include "control/task_space_sarc.hpp"
 
 namespace netmc::control {
 
@@ -19,6 +20,7 @@ struct ControllerSettings {
   PidAxisGains pid;
   PidCrossCouplingGains pidccc;
   IterativeLearningGains ilccc;
+  SarcGains sarc;
   std::string estimator = "curvature";
 };
 
@@ -28,5 +30,12 @@ std::vector<std::string> contour_compensator_names();    // pidccc, ilccc
 ContouringController make_contouring_controller(std::string_view name,
                                                 const ControllerSettings& settings,
                                                 double sample_period_s);
+
+// Every controller by name: AXIS[+COMPENSATOR] as above, or a task-space contouring controller
+// gtcf-sarc / ltcf-sarc (thesis ch. 2) on the contour of `trajectory`.
+std::unique_ptr<ContourController> make_contour_controller(std::string_view name,
+                                                           const ControllerSettings& settings,
+                                                           double sample_period_s,
+                                                           const ReferenceTrajectory& trajectory);
 
 }  // namespace netmc::control

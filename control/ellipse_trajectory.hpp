@@ -26,6 +26,7 @@ class EllipseTrajectory final : public ReferenceTrajectory {
   double contour_error(const Eigen::Vector2d& point) const override;
   std::unique_ptr<ReferenceTrajectory> clone() const override;
   std::string describe() const override;
+  const EllipseParameters& parameters() const { return p_; }
 
  private:
   EllipseParameters p_;

@@ -27,4 +27,9 @@ class ReferenceTrajectory {
   virtual std::string describe() const = 0;
 };
 
+class TaskFrame;
+// The global task frame of a trajectory's contour, with rm increasing along the motion: the
+// closed form where there is one, else the numerical construction (slow: a global search).
+std::shared_ptr<const TaskFrame> make_task_frame(const ReferenceTrajectory& trajectory);
+
 }  // namespace netmc::control

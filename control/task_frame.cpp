@@ -5,6 +5,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "control/circle_trajectory.hpp"
+#include "control/ellipse_trajectory.hpp"
 #include "control/foot_point.hpp"
 #include "control/parameter_check.hpp"
 
@@ -45,6 +47,8 @@ std::vector<double> arc_table(double span, Speed&& speed) {
 
 CircleTaskFrame::CircleTaskFrame(const Eigen::Vector2d& center, double radius)
     : center_(center), radius_(require_positive(radius, "circle r")) {}
+
+double CircleTaskFrame::perimeter_m() const { return kTwoPi * radius_; }
 
 TaskCoordinates CircleTaskFrame::at(const Eigen::Vector2d& q) const {
   // thesis, eq. 2-34..2-36 (digest 2.1 [D] for J)
@@ -121,6 +125,11 @@ NumericalTaskFrame::NumericalTaskFrame(std::shared_ptr<const ReferenceTrajectory
                          [&](double t) { return contour_->sample(t).velocity.norm(); });
 }
 
+double NumericalTaskFrame::perimeter_m() const {
+  const double gap = (contour_->sample(contour_->duration_s()).position - contour_->sample(0.0).position).norm();
+  return gap < 1e-9 ? arc_table_.back() : 0.0;
+}
+
 TaskCoordinates NumericalTaskFrame::at(const Eigen::Vector2d& q) const {
   const FootPoint foot = exact_foot_point(*contour_, q);
   const ReferencePoint c = contour_->sample(foot.time_s);
@@ -134,6 +143,17 @@ TaskCoordinates NumericalTaskFrame::at(const Eigen::Vector2d& q) const {
   r.jacobian.row(0) = normal.transpose();
   r.jacobian.row(1) = tangent.transpose();
   return r;
+}
+
+std::shared_ptr<const TaskFrame> make_task_frame(const ReferenceTrajectory& trajectory) {
+  if (const auto* circle = dynamic_cast<const CircleTrajectory*>(&trajectory); circle && !circle->parameters().clockwise) {
+    return std::make_shared<CircleTaskFrame>(circle->parameters().center, circle->parameters().radius_m);
+  }
+  if (const auto* ellipse = dynamic_cast<const EllipseTrajectory*>(&trajectory); ellipse && !ellipse->parameters().clockwise) {
+    const auto& p = ellipse->parameters();
+    return std::make_shared<EllipseTaskFrame>(p.center, p.semi_axis_x_m, p.semi_axis_y_m);
+  }
+  return std::make_shared<NumericalTaskFrame>(std::shared_ptr<const ReferenceTrajectory>(trajectory.clone()));
 }
 
 }  // namespace netmc::control

@@ -23,6 +23,8 @@ class TaskFrame {
  public:
   virtual ~TaskFrame() = default;
   virtual TaskCoordinates at(const Eigen::Vector2d& q) const = 0;
+  // Length of a closed contour (rm wraps at it); 0 for an open one.
+  virtual double perimeter_m() const = 0;
 };
 
 // rc = |q - c| - R, rm = R atan2 (counter-clockwise arc length), J = [e_r; e_theta * R/rho].
@@ -30,6 +32,7 @@ class CircleTaskFrame final : public TaskFrame {
  public:
   CircleTaskFrame(const Eigen::Vector2d& center, double radius);
   TaskCoordinates at(const Eigen::Vector2d& q) const override;
+  double perimeter_m() const override;
 
  private:
   Eigen::Vector2d center_;
@@ -42,6 +45,7 @@ class EllipseTaskFrame final : public TaskFrame {
  public:
   EllipseTaskFrame(const Eigen::Vector2d& center, double semi_axis_x, double semi_axis_y);
   TaskCoordinates at(const Eigen::Vector2d& q) const override;
+  double perimeter_m() const override { return arc_table_.back(); }
   double arc_length(double nu) const;  // from nu = 0, counter-clockwise
 
  private:
@@ -59,6 +63,8 @@ class NumericalTaskFrame final : public TaskFrame {
  public:
   explicit NumericalTaskFrame(std::shared_ptr<const ReferenceTrajectory> contour);
   TaskCoordinates at(const Eigen::Vector2d& q) const override;
+  // Closed when the motion ends where it starts.
+  double perimeter_m() const override;
 
  private:
   std::shared_ptr<const ReferenceTrajectory> contour_;

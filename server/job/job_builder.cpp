@@ -208,9 +208,9 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   job.validate();
   // Construct the controller once here so a bad name or gain is reported before anything runs.
   in_field("controller", [&] {
-    return control::make_contouring_controller(job.controller_name, job.controller,
-                                               job.sample_period_s)
-        .describe();
+    return control::make_contour_controller(job.controller_name, job.controller,
+                                            job.sample_period_s, *job.trajectory)
+        ->describe();
   });
   return job;
 }

@@ -29,8 +29,8 @@ double mean(const std::vector<double>& values) {
 
 ContourServer::ContourServer(const ContourJob& job)
     : job_((job.validate(), job)),
-      controller_(control::make_contouring_controller(job_.controller_name, job_.controller,
-                                                      job_.sample_period_s)),
+      controller_(control::make_contour_controller(job_.controller_name, job_.controller,
+                                                   job_.sample_period_s, *job_.trajectory)),
       cycles_(job_.cycles()) {
   for (std::size_t axis = 0; axis < job_.axes.size(); ++axis) {
     uplinks_.emplace_back(netsim::LinkModel(job_.uplink.delay->clone(), job_.uplink.loss->clone(),
@@ -44,7 +44,7 @@ Eigen::Vector2d ContourServer::begin_iteration(std::size_t iteration) {
   for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
     uplinks_[axis].reset(job_stream(job_.seed, StreamKind::uplink, axis, iteration));
   }
-  controller_.begin_iteration(start, cycles_);
+  controller_->begin_iteration(start, cycles_);
 
   record_ = IterationRecord{};
   record_.metrics.iteration = iteration;
@@ -117,7 +117,7 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   compute_time_ = std::max(compute_time_, complete ? last_arrival : deadline);
 
   CycleCommand out;
-  const control::ContouringCycle step = controller_.step(cycle, reference, server_measurement_);
+  const control::ContouringCycle step = controller_->step(cycle, reference, server_measurement_);
   out.command = step.command;
   out.send_time_s = compute_time_ + job_.compute_delay_s;
   tau_cc_.push_back(job_.compute_delay_s);
@@ -200,7 +200,7 @@ IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
   summarize(tau_sc_, m.tau_sc_mean_s, m.tau_sc_p99_s, m.tau_sc_max_s);
   summarize(tau_cc_, m.tau_cc_mean_s, m.tau_cc_p99_s, m.tau_cc_max_s);
   summarize(tau_ca_, m.tau_ca_mean_s, m.tau_ca_p99_s, m.tau_ca_max_s);
-  controller_.end_iteration();
+  controller_->end_iteration();
   return std::move(record_);
 }
 

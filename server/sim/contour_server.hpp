@@ -44,12 +44,12 @@ class ContourServer {
   // Closes the iteration; `lost` and `stale` are the axes' downlink counters.
   IterationRecord end_iteration(std::uint64_t lost_setpoints, std::uint64_t stale_setpoints);
 
-  std::string controller_description() const { return controller_.describe(); }
+  std::string controller_description() const { return controller_->describe(); }
   std::size_t cycles() const { return cycles_; }
 
  private:
   ContourJob job_;
-  control::ContouringController controller_;
+  std::unique_ptr<control::ContourController> controller_;
   std::vector<netsim::DelayedChannel<double>> uplinks_;
   std::size_t cycles_;
 

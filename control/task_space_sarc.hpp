@@ -1,0 +1,50 @@
+#pragma once
+// Simple adaptive robust contouring control in task coordinates (thesis, paper 000, eq. 2-50 to
+// 2-60): s = e_dot + Lambda e, model compensation M q_eq'' + B q' + A S_f(q'), the lumped
+// uncertainty F_l estimated with projection into |F_l| <= F_M, robust feedback -J^T K_s s.
+// In the global task frame (GTCF) e = r(q) - r_d with r = [rc, rm] and J = dr/dq; in the local
+// task frame (LTCF, eq. 2-61..2-64) e = T(alpha) (q - q_d) and J = T, the frame of the tangent at
+// the desired point. Velocity is the difference of measured positions (as on the thesis stage);
+// q_eq'' is the difference of q_eq' over one period.
+
+#include <memory>
+
+#include "control/contour_controller.hpp"
+#include "control/task_frame.hpp"
+
+namespace netmc::control {
+
+struct SarcGains {
+  Eigen::Vector2d mass{0.1, 0.55};           // M [V/(m/s^2)], thesis ch. 2 nominal
+  Eigen::Vector2d damping{0.4, 0.5};         // B [V/(m/s)]
+  Eigen::Vector2d coulomb{0.1, 0.15};        // A [V]
+  double friction_slope = 9000.0;            // S_f(v) = 2/pi atan(slope v)
+  Eigen::Vector2d lambda{100.0, 30.0};       // Lambda = diag(contour, tangential)
+  Eigen::Vector2d feedback{100.0, 60.0};     // K_s
+  Eigen::Vector2d adaptation{1e4, 1e4};      // Gamma
+  Eigen::Vector2d uncertainty_bound{1.5, 1.5};  // F_M [V]
+};
+
+class TaskSpaceSarc final : public ContourController {
+ public:
+  // Global frame: `frame` of the contour. Local frame: frame == nullptr.
+  TaskSpaceSarc(const SarcGains& gains, double sample_period_s, std::shared_ptr<const TaskFrame> frame);
+
+  void begin_iteration(const Eigen::Vector2d& initial_position, std::size_t samples) override;
+  ContouringCycle step(std::size_t cycle, const ReferencePoint& reference,
+                       const Eigen::Vector2d& measured) override;
+  std::string describe() const override;
+
+  const Eigen::Vector2d& uncertainty_estimate() const { return estimate_; }
+
+ private:
+  SarcGains gains_;
+  double h_;
+  std::shared_ptr<const TaskFrame> frame_;
+  Eigen::Vector2d previous_position_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d previous_equivalent_velocity_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d estimate_ = Eigen::Vector2d::Zero();  // F_l hat
+  bool first_ = true;
+};
+
+}  // namespace netmc::control
