@@ -1,5 +1,6 @@
 #include "client/presets.hpp"
 
+#include <numbers>
 #include <stdexcept>
 
 namespace netmc::cli {
@@ -47,8 +48,43 @@ netmc::v1::JobSpec seed001_job(const std::string& controller) {
 }
 
 std::vector<std::string> preset_names() {
-  return {"seed001", "seed001-ellipse", "seed001-line", "seed001-long-delay", "seed001-bursty"};
+  return {"seed001", "seed001-ellipse", "seed001-line", "seed001-long-delay", "seed001-bursty",
+          "thesis-ellipse"};
 }
+
+namespace {
+
+// Thesis (paper 000) eq. 2-68: x = 0.2 sin 7t, y = -0.02 cos 7t + 0.02 for 25 s, linear-motor
+// stage, Ts = 0.2 ms, 0.5 um encoder, no network; metrics over 10-25 s (digest 2.12 [A]).
+StudyPlan thesis_ellipse() {
+  StudyPlan plan;
+  plan.title = "thesis Table 2-2 (case C): 10:1 ellipse at 7 rad/s, linear motors, Ts = 0.2 ms";
+  plan.steady_metrics = true;
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc"}) {
+    netmc::v1::JobSpec job;
+    auto& e = *job.mutable_trajectory()->mutable_ellipse();
+    e.set_semi_axis_x_m(0.2);
+    e.set_semi_axis_y_m(0.02);
+    e.set_center_x_m(0.0);
+    e.set_center_y_m(0.02);
+    e.set_period_s(2.0 * std::numbers::pi / 7.0);
+    e.set_start_angle_rad(-std::numbers::pi / 2.0);
+    e.set_revolutions(25.0 * 7.0 / (2.0 * std::numbers::pi));
+    job.set_plant("linmotor");
+    job.mutable_controller()->set_name(controller);
+    job.set_sample_period_s(2e-4);
+    job.mutable_sensor()->set_resolution_m(0.5e-6);
+    job.set_evaluation_start_s(10.0);
+    job.set_iterations(1);
+    job.set_seed(1);
+    plan.jobs.push_back(job);
+  }
+  plan.paper = {{"ltcf-sarc", 5.66e-6, 22.37e-6}, {"gtcf-sarc", 2.20e-6, 6.73e-6}};
+  plan.paper_source = "thesis Table 2-2 (C)";
+  return plan;
+}
+
+}  // namespace
 
 StudyPlan make_preset(std::string_view name) {
   if (name == "seed001") {
@@ -98,6 +134,7 @@ StudyPlan make_preset(std::string_view name) {
     return seed001_study("paper 001 circle with bursty Markov delay (good 0.3-0.8 ms, bad 3-12 ms)",
                          nullptr, &d);
   }
+  if (name == "thesis-ellipse") return thesis_ellipse();
   std::string expected;
   for (const auto& n : preset_names()) expected += (expected.empty() ? "" : ", ") + n;
   throw std::invalid_argument("--preset: unknown name '" + std::string(name) +

@@ -12,7 +12,7 @@ namespace netmc::cli {
 
 struct PaperRow {
   std::string controller;
-  double e_max_m;
+  double e_max_m;          // paper 001: e_max and e_sum; steady studies: RMS and max
   double e_sum_m;
 };
 
@@ -21,6 +21,8 @@ struct StudyPlan {
   std::vector<netmc::v1::JobSpec> jobs;
   std::vector<PaperRow> paper;      // empty when the study has no paper reference
   std::string paper_source;
+  // Judged after the start-up transient: the table shows the steady RMS and max (um).
+  bool steady_metrics = false;
 };
 
 std::vector<std::string> preset_names();

@@ -26,9 +26,44 @@ const PaperRow* paper_row(const StudyPlan& plan, const std::string& controller) 
 
 }  // namespace
 
+namespace {
+
+// Studies judged after the start-up transient (thesis): steady RMS and max in um, inputs in V.
+void print_steady_table(std::ostream& out, const StudyPlan& plan,
+                        const std::vector<RunOutcome>& outcomes) {
+  fmt::print(out, "{:<18} {:>17} {:>17} {:>10}  {:>11} {:>11}  {:>16} {:>16}\n", "run",
+             "e_rms_steady [um]", "e_max_steady [um]", "rms/first", "u_x rms [V]", "u_y rms [V]",
+             "paper rms [um]", "paper max [um]");
+  const auto& first = last(outcomes.front());
+  for (const auto& outcome : outcomes) {
+    const auto& m = last(outcome);
+    if (m.diverged()) {
+      fmt::print(out, "{:<18} unstable at t = {:.3f} s\n", outcome.result.label(), m.diverged_at_s());
+      continue;
+    }
+    fmt::print(out, "{:<18} {:>17.2f} {:>17.2f} {:>10.3f}  {:>11.2f} {:>11.2f}", outcome.result.label(),
+               m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6,
+               m.e_rms_steady_m() / first.e_rms_steady_m(), m.command_rms(0), m.command_rms(1));
+    if (const PaperRow* row = paper_row(plan, outcome.result.controller())) {
+      fmt::print(out, "  {:>16.2f} {:>16.2f}", row->e_max_m * 1e6, row->e_sum_m * 1e6);
+    }
+    fmt::print(out, "\n");
+  }
+}
+
+}  // namespace
+
 void print_study_table(std::ostream& out, const StudyPlan& plan,
                        const std::vector<RunOutcome>& outcomes) {
   if (outcomes.empty()) return;
+  if (plan.steady_metrics) {
+    const auto& first = outcomes.front().result;
+    fmt::print(out, "{}\ntrajectory {} | plant {} | delay {} | h = {} ms | seed {}\n\n", plan.title,
+               first.trajectory(), first.plant(), first.delay(), first.sample_period_s() * 1e3,
+               first.seed());
+    print_steady_table(out, plan, outcomes);
+    return;
+  }
   const auto& first = outcomes.front().result;
   fmt::print(out, "{}\n", plan.title);
   fmt::print(out, "trajectory {} | plant {} | delay {} | h = {} ms | {} iterations | seed {}\n\n",

@@ -20,6 +20,7 @@ class CircleTrajectory final : public ReferenceTrajectory {
 
   ReferencePoint sample(double time_s) const override;
   double duration_s() const override;
+  double period_s() const override { return p_.period_s; }
   double contour_error(const Eigen::Vector2d& point) const override;  // paper 001, eq. 12
   std::unique_ptr<ReferenceTrajectory> clone() const override;
   std::string describe() const override;

@@ -20,6 +20,8 @@ class ReferenceTrajectory {
 
   virtual ReferencePoint sample(double time_s) const = 0;
   virtual double duration_s() const = 0;
+  // One pass of a repeating reference (a revolution); the whole run otherwise.
+  virtual double period_s() const { return duration_s(); }
   // Exact signed distance from `point` to the whole contour: the ground truth for metrics.
   // Closed curves: positive outside. Open curves: positive on the right of the direction of travel.
   virtual double contour_error(const Eigen::Vector2d& point) const = 0;

@@ -203,6 +203,10 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   job.seed = spec.seed();
   job.deadline_s = spec.deadline_s();
   job.compute_delay_s = spec.compute_delay_s();
+  if (!(spec.evaluation_start_s() >= 0.0)) {
+    throw std::invalid_argument("evaluation_start: expected a non-negative duration");
+  }
+  job.evaluation_start_s = spec.evaluation_start_s();
   if (spec.command_limit() != 0.0) job.command_limit = spec.command_limit();
   if (spec.divergence_limit_m() != 0.0) job.divergence_limit_m = spec.divergence_limit_m();
   job.validate();
@@ -260,6 +264,8 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   out.set_e_max_m(m.e_max_m);
   out.set_e_rms_m(m.e_rms_m);
   out.set_e_sum_m(m.e_sum_m);
+  out.set_e_rms_steady_m(m.e_rms_steady_m);
+  out.set_e_max_steady_m(m.e_max_steady_m);
   out.set_tau_mean_s(m.tau_mean_s);
   out.set_tau_p50_s(m.tau_p50_s);
   out.set_tau_p99_s(m.tau_p99_s);

@@ -41,6 +41,10 @@ void ContourJob::validate() const {
           "sample_period: too many cycles for the run length (more than 1e8)");
 }
 
+double ContourJob::evaluation_start() const {
+  return evaluation_start_s > 0.0 ? evaluation_start_s : 2.0 * trajectory->period_s();
+}
+
 std::size_t ContourJob::cycles() const {
   const double run_s = duration_s > 0.0 ? duration_s : trajectory->duration_s();
   return static_cast<std::size_t>(std::llround(run_s / sample_period_s)) + 1;

@@ -45,6 +45,9 @@ struct ContourJob {
   // A run whose true contour error exceeds this (or whose command is not finite) is unstable:
   // the iteration stops there and is reported as diverged; later iterations are not run.
   double divergence_limit_m = 0.05;
+  // Start of the evaluation window of the steady metrics; 0: after two periods of the reference.
+  double evaluation_start_s = 0.0;
+  double evaluation_start() const;
   bool record_traces = false;
 
   // Throws std::invalid_argument naming the field when the job cannot run.

@@ -31,7 +31,8 @@ ContourServer::ContourServer(const ContourJob& job)
     : job_((job.validate(), job)),
       controller_(control::make_contour_controller(job_.controller_name, job_.controller,
                                                    job_.sample_period_s, *job_.trajectory)),
-      cycles_(job_.cycles()) {
+      cycles_(job_.cycles()),
+      evaluation_start_(job_.evaluation_start()) {
   for (std::size_t axis = 0; axis < job_.axes.size(); ++axis) {
     uplinks_.emplace_back(netsim::LinkModel(job_.uplink.delay->clone(), job_.uplink.loss->clone(),
                                             job_stream(job_.seed, StreamKind::uplink, axis, 0)));
@@ -59,6 +60,8 @@ Eigen::Vector2d ContourServer::begin_iteration(std::size_t iteration) {
   tau_cc_.clear();
   tau_ca_.clear();
   squared_error_sum_ = 0.0;
+  steady_squared_sum_ = 0.0;
+  steady_samples_ = 0;
   tracking_squares_ = {};
   command_squares_ = {};
   compute_time_ = 0.0;
@@ -134,6 +137,11 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   m.e_max_m = std::max(m.e_max_m, std::abs(contour_error));
   m.e_sum_m += std::abs(contour_error);
   squared_error_sum_ += contour_error * contour_error;
+  if (t >= evaluation_start_) {
+    steady_squared_sum_ += contour_error * contour_error;
+    ++steady_samples_;
+    m.e_max_steady_m = std::max(m.e_max_steady_m, std::abs(contour_error));
+  }
   for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
     const auto i = static_cast<Eigen::Index>(axis);
     const double tracking = reference.position[i] - true_position_[i];
@@ -181,6 +189,7 @@ IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
   if (job_.record_traces) record_.trace.resize(samples_);
   const auto n = static_cast<double>(std::max<std::size_t>(samples_, 1));
   m.e_rms_m = std::sqrt(squared_error_sum_ / n);
+  if (steady_samples_ > 0) m.e_rms_steady_m = std::sqrt(steady_squared_sum_ / static_cast<double>(steady_samples_));
   for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
     m.tracking_rms_m[axis] = std::sqrt(tracking_squares_[axis] / n);
     m.command_rms[axis] = std::sqrt(command_squares_[axis] / n);

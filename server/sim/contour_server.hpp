@@ -52,6 +52,7 @@ class ContourServer {
   std::unique_ptr<control::ContourController> controller_;
   std::vector<netsim::DelayedChannel<double>> uplinks_;
   std::size_t cycles_;
+  double evaluation_start_;
 
   // State of the current iteration.
   IterationRecord record_;
@@ -61,6 +62,8 @@ class ContourServer {
   std::vector<std::int64_t> newest_sequence_;
   std::vector<double> tau_, tau_sc_, tau_cc_, tau_ca_;
   double squared_error_sum_ = 0.0;
+  double steady_squared_sum_ = 0.0;
+  std::size_t steady_samples_ = 0;
   std::array<double, 2> tracking_squares_{}, command_squares_{};
   double compute_time_ = 0.0;
   std::size_t samples_ = 0;

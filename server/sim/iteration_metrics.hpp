@@ -12,6 +12,8 @@ struct IterationMetrics {
   double e_max_m = 0.0;                  // max |eps| over the samples (exact contour error)
   double e_rms_m = 0.0;
   double e_sum_m = 0.0;                  // sum of |eps(k)| (paper 001's cumulative error)
+  double e_rms_steady_m = 0.0;           // over the evaluation window (after the start-up)
+  double e_max_steady_m = 0.0;
   std::array<double, 2> tracking_rms_m{};
   std::array<double, 2> tracking_max_m{};
   std::array<double, 2> command_rms{};
