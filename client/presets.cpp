@@ -49,27 +49,22 @@ netmc::v1::JobSpec seed001_job(const std::string& controller) {
 
 std::vector<std::string> preset_names() {
   return {"seed001", "seed001-ellipse", "seed001-line", "seed001-long-delay", "seed001-bursty",
-          "thesis-ellipse"};
+          "thesis-ellipse", "thesis-circle"};
 }
 
 namespace {
 
 // Thesis (paper 000) eq. 2-68: x = 0.2 sin 7t, y = -0.02 cos 7t + 0.02 for 25 s, linear-motor
 // stage, Ts = 0.2 ms, 0.5 um encoder, no network; metrics over 10-25 s (digest 2.12 [A]).
-StudyPlan thesis_ellipse() {
+// Both thesis chapter-2 studies: LTCF-SARC against GTCF-SARC on the linear-motor stage.
+StudyPlan thesis_study(const std::string& title, const netmc::v1::Trajectory& trajectory,
+                       std::vector<PaperRow> paper, const std::string& source) {
   StudyPlan plan;
-  plan.title = "thesis Table 2-2 (case C): 10:1 ellipse at 7 rad/s, linear motors, Ts = 0.2 ms";
+  plan.title = title;
   plan.steady_metrics = true;
   for (const char* controller : {"ltcf-sarc", "gtcf-sarc"}) {
     netmc::v1::JobSpec job;
-    auto& e = *job.mutable_trajectory()->mutable_ellipse();
-    e.set_semi_axis_x_m(0.2);
-    e.set_semi_axis_y_m(0.02);
-    e.set_center_x_m(0.0);
-    e.set_center_y_m(0.02);
-    e.set_period_s(2.0 * std::numbers::pi / 7.0);
-    e.set_start_angle_rad(-std::numbers::pi / 2.0);
-    e.set_revolutions(25.0 * 7.0 / (2.0 * std::numbers::pi));
+    *job.mutable_trajectory() = trajectory;
     job.set_plant("linmotor");
     job.mutable_controller()->set_name(controller);
     job.set_sample_period_s(2e-4);
@@ -79,9 +74,40 @@ StudyPlan thesis_ellipse() {
     job.set_seed(1);
     plan.jobs.push_back(job);
   }
-  plan.paper = {{"ltcf-sarc", 5.66e-6, 22.37e-6}, {"gtcf-sarc", 2.20e-6, 6.73e-6}};
-  plan.paper_source = "thesis Table 2-2 (C)";
+  plan.paper = std::move(paper);
+  plan.paper_source = source;
   return plan;
+}
+
+StudyPlan thesis_ellipse() {
+  netmc::v1::Trajectory t;
+  auto& e = *t.mutable_ellipse();
+  e.set_semi_axis_x_m(0.2);
+  e.set_semi_axis_y_m(0.02);
+  e.set_center_x_m(0.0);
+  e.set_center_y_m(0.02);
+  e.set_period_s(2.0 * std::numbers::pi / 7.0);
+  e.set_start_angle_rad(-std::numbers::pi / 2.0);
+  e.set_revolutions(25.0 * 7.0 / (2.0 * std::numbers::pi));  // 25 s
+  return thesis_study("thesis Table 2-2 (case C): 10:1 ellipse at 7 rad/s, linear motors, Ts = 0.2 ms", t,
+                      {{"ltcf-sarc", 5.66e-6, 22.37e-6}, {"gtcf-sarc", 2.20e-6, 6.73e-6}},
+                      "thesis Table 2-2 (C)");
+}
+
+// Thesis eq. 2-65 (case A, zero initial error): x = 0.04 sin 15t, y = -0.04 cos 15t + 0.04,
+// 30 s, metrics over 10-30 s.
+StudyPlan thesis_circle() {
+  netmc::v1::Trajectory t;
+  auto& c = *t.mutable_circle();
+  c.set_radius_m(0.04);
+  c.set_center_x_m(0.0);
+  c.set_center_y_m(0.04);
+  c.set_period_s(2.0 * std::numbers::pi / 15.0);
+  c.set_start_angle_rad(-std::numbers::pi / 2.0);
+  c.set_revolutions(30.0 * 15.0 / (2.0 * std::numbers::pi));  // 30 s
+  return thesis_study("thesis Table 2-1 (case A): circle r = 4 cm at 15 rad/s, linear motors, Ts = 0.2 ms", t,
+                      {{"ltcf-sarc", 13.33e-6, 31.54e-6}, {"gtcf-sarc", 9.92e-6, 25.89e-6}},
+                      "thesis Table 2-1 (A)");
 }
 
 }  // namespace
@@ -135,6 +161,7 @@ StudyPlan make_preset(std::string_view name) {
                          nullptr, &d);
   }
   if (name == "thesis-ellipse") return thesis_ellipse();
+  if (name == "thesis-circle") return thesis_circle();
   std::string expected;
   for (const auto& n : preset_names()) expected += (expected.empty() ? "" : ", ") + n;
   throw std::invalid_argument("--preset: unknown name '" + std::string(name) +
