@@ -25,6 +25,8 @@ TaskSpaceSarc::TaskSpaceSarc(const SarcGains& gains, double sample_period_s,
 
 void TaskSpaceSarc::begin_iteration(const Eigen::Vector2d& initial_position, std::size_t) {
   previous_position_ = initial_position;
+  earlier_position_ = initial_position;
+  samples_seen_ = 0;
   previous_equivalent_velocity_.setZero();
   estimate_.setZero();
   first_ = true;
@@ -32,7 +34,9 @@ void TaskSpaceSarc::begin_iteration(const Eigen::Vector2d& initial_position, std
 
 ContouringCycle TaskSpaceSarc::step(std::size_t, const ReferencePoint& reference,
                                     const Eigen::Vector2d& q) {
-  const Eigen::Vector2d velocity = first_ ? Eigen::Vector2d::Zero() : Eigen::Vector2d((q - previous_position_) / h_);
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
+  if (samples_seen_ == 1) velocity = (q - previous_position_) / h_;
+  if (samples_seen_ >= 2) velocity = (3.0 * q - 4.0 * previous_position_ + earlier_position_) / (2.0 * h_);
 
   // Error, Jacobian and desired task velocity in the chosen frame.
   Eigen::Vector2d error, desired_rate;
@@ -85,7 +89,9 @@ ContouringCycle TaskSpaceSarc::step(std::size_t, const ReferencePoint& reference
                                 gains_.uncertainty_bound[i]);
     }
   }
+  earlier_position_ = previous_position_;
   previous_position_ = q;
+  ++samples_seen_;
   previous_equivalent_velocity_ = equivalent_velocity;
   first_ = false;
   return out;

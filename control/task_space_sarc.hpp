@@ -4,8 +4,10 @@
 // uncertainty F_l estimated with projection into |F_l| <= F_M, robust feedback -J^T K_s s.
 // In the global task frame (GTCF) e = r(q) - r_d with r = [rc, rm] and J = dr/dq; in the local
 // task frame (LTCF, eq. 2-61..2-64) e = T(alpha) (q - q_d) and J = T, the frame of the tangent at
-// the desired point. Velocity is the difference of measured positions (as on the thesis stage);
-// q_eq'' is the difference of q_eq' over one period.
+// the desired point. Velocity is differenced from measured positions (as on the thesis stage),
+// with the second-order backward difference: the plain one lags half a period, and on a fast
+// curve its direction then leans off the tangent and reads as a contour velocity. q_eq'' is the
+// difference of q_eq' over one period.
 
 #include <memory>
 
@@ -42,6 +44,8 @@ class TaskSpaceSarc final : public ContourController {
   double h_;
   std::shared_ptr<const TaskFrame> frame_;
   Eigen::Vector2d previous_position_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d earlier_position_ = Eigen::Vector2d::Zero();  // two samples back
+  int samples_seen_ = 0;
   Eigen::Vector2d previous_equivalent_velocity_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d estimate_ = Eigen::Vector2d::Zero();  // F_l hat
   bool first_ = true;
