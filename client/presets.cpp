@@ -79,6 +79,11 @@ StudyPlan thesis_study(const std::string& title, const netmc::v1::Trajectory& tr
   return plan;
 }
 
+// Case D of Table 2-2: as C, but the reference halts for 4 ms at t = 6 pi s (digest 2.12 [A]).
+// The drive's command is limited to the +-10 V of the thesis's DAC (linear to about 8 V,
+// appendix A): without a limit the halt asks for a 700 V spike that no stage could apply.
+constexpr double kThesisCommandLimit = 10.0;
+
 StudyPlan thesis_ellipse() {
   netmc::v1::Trajectory t;
   auto& e = *t.mutable_ellipse();
@@ -89,9 +94,25 @@ StudyPlan thesis_ellipse() {
   e.set_period_s(2.0 * std::numbers::pi / 7.0);
   e.set_start_angle_rad(-std::numbers::pi / 2.0);
   e.set_revolutions(25.0 * 7.0 / (2.0 * std::numbers::pi));  // 25 s
-  return thesis_study("thesis Table 2-2 (case C): 10:1 ellipse at 7 rad/s, linear motors, Ts = 0.2 ms", t,
-                      {{"ltcf-sarc", 5.66e-6, 22.37e-6}, {"gtcf-sarc", 2.20e-6, 6.73e-6}},
-                      "thesis Table 2-2 (C)");
+  StudyPlan plan = thesis_study(
+      "thesis Table 2-2: 10:1 ellipse at 7 rad/s, linear motors, Ts = 0.2 ms; case D halts 4 ms at 6 pi s",
+      t,
+      {{"ltcf-sarc", 5.66e-6, 22.37e-6},
+       {"gtcf-sarc", 2.20e-6, 6.73e-6},
+       {"ltcf-sarc (D)", 5.76e-6, 68.50e-6},
+       {"gtcf-sarc (D)", 2.29e-6, 23.43e-6}},
+      "thesis Table 2-2");
+  const std::size_t case_c_runs = plan.jobs.size();
+  for (std::size_t i = 0; i < case_c_runs; ++i) {
+    netmc::v1::JobSpec halted = plan.jobs[i];
+    halted.set_name(halted.controller().name() + " (D)");
+    auto& halt = *halted.mutable_trajectory()->mutable_halt();
+    halt.set_at_s(6.0 * std::numbers::pi);
+    halt.set_duration_s(0.004);
+    plan.jobs.push_back(halted);
+  }
+  for (auto& job : plan.jobs) job.set_command_limit(kThesisCommandLimit);
+  return plan;
 }
 
 // Thesis eq. 2-65 (case A, zero initial error): x = 0.04 sin 15t, y = -0.04 cos 15t + 0.04,

@@ -145,7 +145,8 @@ TaskCoordinates NumericalTaskFrame::at(const Eigen::Vector2d& q) const {
   return r;
 }
 
-std::shared_ptr<const TaskFrame> make_task_frame(const ReferenceTrajectory& trajectory) {
+std::shared_ptr<const TaskFrame> make_task_frame(const ReferenceTrajectory& motion) {
+  const ReferenceTrajectory& trajectory = motion.geometry();
   if (const auto* circle = dynamic_cast<const CircleTrajectory*>(&trajectory); circle && !circle->parameters().clockwise) {
     return std::make_shared<CircleTaskFrame>(circle->parameters().center, circle->parameters().radius_m);
   }

@@ -8,6 +8,7 @@
 
 #include "control/circle_trajectory.hpp"
 #include "control/ellipse_trajectory.hpp"
+#include "control/halted_trajectory.hpp"
 #include "control/line_trajectory.hpp"
 #include "plant/plant_catalog.hpp"
 
@@ -17,8 +18,7 @@ namespace {
 using netmc::v1::DelayProfile;
 using netmc::v1::LossProfile;
 
-std::shared_ptr<const control::ReferenceTrajectory> build_trajectory(
-    const netmc::v1::Trajectory& t) {
+std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1::Trajectory& t) {
   switch (t.shape_case()) {
     case netmc::v1::Trajectory::kCircle: {
       const auto& c = t.circle();
@@ -55,6 +55,14 @@ std::shared_ptr<const control::ReferenceTrajectory> build_trajectory(
       break;
   }
   throw std::invalid_argument("trajectory: missing (expected circle, ellipse or line)");
+}
+
+std::shared_ptr<const control::ReferenceTrajectory> build_trajectory(
+    const netmc::v1::Trajectory& t) {
+  auto motion = build_shape(t);
+  if (!t.has_halt()) return motion;
+  return std::make_shared<control::HaltedTrajectory>(std::move(motion), t.halt().at_s(),
+                                                     t.halt().duration_s());
 }
 
 std::unique_ptr<netsim::DelayModel> build_delay(const DelayProfile& d) {
@@ -283,6 +291,7 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
     out.add_tracking_rms_m(m.tracking_rms_m[axis]);
     out.add_tracking_max_m(m.tracking_max_m[axis]);
     out.add_command_rms(m.command_rms[axis]);
+    out.add_command_rms_steady(m.command_rms_steady[axis]);
   }
   out.set_deadline_misses(static_cast<std::uint32_t>(m.deadline_misses));
   out.set_lost_feedback(static_cast<std::uint32_t>(m.lost_feedback));
