@@ -33,6 +33,14 @@ double HaltedTrajectory::duration_s() const {
   return halt_at_s_ < inner ? inner + halt_duration_s_ : inner;
 }
 
+std::vector<double> HaltedTrajectory::corner_times_s() const {
+  std::vector<double> corners = motion_->corner_times_s();
+  for (double& t : corners) {
+    if (t >= halt_at_s_) t += halt_duration_s_;  // the motion reaches it later
+  }
+  return corners;
+}
+
 std::unique_ptr<ReferenceTrajectory> HaltedTrajectory::clone() const {
   return std::make_unique<HaltedTrajectory>(*this);
 }

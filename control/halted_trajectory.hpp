@@ -23,6 +23,7 @@ class HaltedTrajectory final : public ReferenceTrajectory {
     return motion_->contour_error(point);
   }
   const ReferenceTrajectory& geometry() const override { return motion_->geometry(); }
+  std::vector<double> corner_times_s() const override;
   std::unique_ptr<ReferenceTrajectory> clone() const override;
   std::string describe() const override;
 
