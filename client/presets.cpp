@@ -132,6 +132,9 @@ void set_linmotor_adrc_gains(netmc::v1::ControllerSpec& controller) {
   x.set_b0(1.0 / kMassX);
   x.set_kp(kLoopBandwidth * kLoopBandwidth * kMassX);
   x.set_kd(2.0 * kLoopBandwidth * kMassX);
+  // The coupling term must not be cancelled as disturbance (the paper's own-command input would
+  // cancel it: PIDCCC then changes e_rms by < 3 %); without coupling the two inputs are equal.
+  x.set_observer_sees_sent_command(true);
   auto& y = *controller.mutable_adrc_y();
   y.set_b0(1.0 / kMassY);
   y.set_kp(kLoopBandwidth * kLoopBandwidth * kMassY);
@@ -153,16 +156,25 @@ StudyPlan thesis_ellipse_delay() {
   delays[2].mutable_uniform()->set_max_s(1e-3);
   delays[3].set_constant_s(1e-3);
   delays[4].set_constant_s(2e-3);
-  delays[5].set_constant_s(4e-3);
+  delays[5].set_constant_s(3e-3);
   // gtcf-adrc-soft: GTCF-ADRC retuned for delay margin (w_c = 120, w_m = 60, observers 4x),
   // the fastest of the tunings tried that stays stable at 2 ms constant delay.
-  for (const char* run : {"ltcf-sarc", "gtcf-sarc", "gtcf-adrc", "gtcf-adrc-soft", "adrc"}) {
+  // Mean delay of each column in periods: gtcf-adrc-matched feeds its observers the task command
+  // that many periods late (GtcfAdrcGains::observer_input_delay), default bandwidths otherwise.
+  const unsigned mean_delay_periods[] = {0, 2, 3, 5, 10, 15};
+  for (const char* run : {"ltcf-sarc", "gtcf-sarc", "gtcf-adrc", "gtcf-adrc-matched", "gtcf-adrc-soft", "adrc",
+                          "adrc+pidccc"}) {
     const std::string_view label(run);
-    for (const auto& delay : delays) {
+    for (std::size_t column = 0; column < delays.size(); ++column) {
+      const auto& delay = delays[column];
       netmc::v1::JobSpec job;
       *job.mutable_trajectory() = thesis_ellipse_trajectory(10.0);
       job.set_plant("linmotor");
       job.mutable_controller()->set_name(label.starts_with("gtcf-adrc") ? "gtcf-adrc" : std::string(label));
+      if (label == "gtcf-adrc-matched") {
+        job.set_name(run);
+        job.mutable_controller()->mutable_gtcf_adrc()->set_observer_input_delay(mean_delay_periods[column]);
+      }
       if (label == "gtcf-adrc-soft") {
         job.set_name(run);
         auto& gains = *job.mutable_controller()->mutable_gtcf_adrc();
@@ -172,6 +184,12 @@ StudyPlan thesis_ellipse_delay() {
         gains.set_wom(250.0);
       }
       set_linmotor_adrc_gains(*job.mutable_controller());  // used by adrc, adrc+... only
+      // PIDCCC: kp the largest of 2e3, 1e4, 3e4, 1e5, 3e5 V/m whose max error under
+      // U(0.1, 0.5) ms delay stays within 2x of its no-delay value (3e5: 2.6 -> 148 um); the
+      // difference term (kd per sample) does not matter at this period, so kd = 0.
+      job.mutable_controller()->mutable_pidccc()->set_kp(1e5);
+      job.mutable_controller()->mutable_pidccc()->set_ki(0.0);
+      job.mutable_controller()->mutable_pidccc()->set_kd(0.0);
       *job.mutable_downlink()->mutable_delay() = delay;
       job.set_sample_period_s(2e-4);
       job.mutable_sensor()->set_resolution_m(0.5e-6);

@@ -251,7 +251,7 @@ void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains, std::s
 
 void parse_gtcf_adrc_gains(std::string_view text, netmc::v1::GtcfAdrcGains& gains) {
   constexpr std::string_view flag = "--gtcf-adrc";
-  const auto keys = parse_keys(text, flag, {"wc", "wm", "wo", "woc", "wom", "observer"});
+  const auto keys = parse_keys(text, flag, {"wc", "wm", "wo", "woc", "wom", "observer", "delay"});
   if (keys.contains("wo") && (keys.contains("woc") || keys.contains("wom"))) {
     fail(flag, "wo sets both observers: give either wo or woc/wom");
   }
@@ -262,6 +262,13 @@ void parse_gtcf_adrc_gains(std::string_view text, netmc::v1::GtcfAdrcGains& gain
       continue;
     }
     const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
+    if (key == "delay") {
+      if (number < 0 || number != std::floor(number) || number > 100000) {
+        fail(flag, "delay expects a whole number of periods, got '" + value + "'");
+      }
+      gains.set_observer_input_delay(static_cast<std::uint32_t>(number));
+      continue;
+    }
     if (!(number > 0.0)) fail(flag, key + " expects a positive bandwidth in rad/s, got '" + value + "'");
     if (key == "wc") gains.set_wc(number);
     if (key == "wm") gains.set_wm(number);

@@ -27,7 +27,8 @@ netmc::v1::LossProfile parse_loss(std::string_view text, std::string_view flag);
 // --adrc / --adrc-y r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent
 void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains,
                       std::string_view flag = "--adrc");
-// --gtcf-adrc wc=..,wm=..,wo=..|woc=..,wom=..,observer=euler|zoh (bandwidths in rad/s)
+// --gtcf-adrc wc=..,wm=..,wo=..|woc=..,wom=..,observer=euler|zoh,delay=PERIODS
+// (bandwidths in rad/s; delay: the observers see the task command this many periods late)
 void parse_gtcf_adrc_gains(std::string_view text, netmc::v1::GtcfAdrcGains& gains);
 // --ilc kcp=..,kcd=..,forgetting=..,q=..(Hz),lead=..(samples)
 void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains);

@@ -150,7 +150,7 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);
   app->add_option("--adrc", flags.adrc, "ADRC gains: r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent");
   app->add_option("--adrc-y", flags.adrc_y, "The y axis's ADRC gains where they differ from --adrc (same keys)");
-  app->add_option("--gtcf-adrc", flags.gtcf_adrc, "Task-space ADRC bandwidths [rad/s]: wc=..,wm=..,wo=..|woc=..,wom=..,observer=euler|zoh");
+  app->add_option("--gtcf-adrc", flags.gtcf_adrc, "Task-space ADRC bandwidths [rad/s]: wc=..,wm=..,wo=..|woc=..,wom=..,observer=euler|zoh,delay=PERIODS (observer input delay)");
   app->add_option("--ilc", flags.ilc, "ILC gains: kcp=..,kcd=..,forgetting=..,q=HZ,lead=SAMPLES");
   app->add_option("--pidccc", flags.pidccc, "PID cross-coupling gains: kp=..,ki=..,kd=..");
   app->add_option("--pid", flags.pid, "Per-axis PID gains: kp=..,ki=..,kd=..");

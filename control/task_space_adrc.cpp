@@ -38,6 +38,7 @@ void TaskSpaceAdrc::begin_iteration(const Eigen::Vector2d& initial_position, std
   rm_unwrapped_ = r.rm;
   observers_[0].reset(r.rc);
   observers_[1].reset(r.rm);
+  recent_commands_.assign(gains_.observer_input_delay + 1, Eigen::Vector2d::Zero());
 }
 
 ContouringCycle TaskSpaceAdrc::step(std::size_t, const ReferencePoint& reference,
@@ -85,8 +86,10 @@ ContouringCycle TaskSpaceAdrc::step(std::size_t, const ReferencePoint& reference
 
   // paper 001, eq. 9: advance each observer with the measured coordinate and the task
   // acceleration just commanded (what acts late under delay lands in z3).
-  observers_[0].update(actual.rc, task_command[0]);
-  observers_[1].update(rm_unwrapped_, task_command[1]);
+  recent_commands_.push_back(task_command);
+  recent_commands_.pop_front();
+  observers_[0].update(actual.rc, recent_commands_.front()[0]);
+  observers_[1].update(rm_unwrapped_, recent_commands_.front()[1]);
   return out;
 }
 
@@ -95,7 +98,9 @@ std::string TaskSpaceAdrc::describe() const {
   text << "gtcf-adrc(wc=" << gains_.loop_bandwidth[0] << ", wm=" << gains_.loop_bandwidth[1]
        << ", woc=" << gains_.observer_bandwidth[0] << ", wom=" << gains_.observer_bandwidth[1]
        << ", observer="
-       << (gains_.discretization == Discretization::forward_euler ? "euler" : "zoh") << ")";
+       << (gains_.discretization == Discretization::forward_euler ? "euler" : "zoh");
+  if (gains_.observer_input_delay > 0) text << ", observer input delay=" << gains_.observer_input_delay;
+  text << ")";
   return text.str();
 }
 

@@ -35,9 +35,17 @@
 // the Cartesian feedforward of the reference acceleration plus task-space feedback; what the
 // approximation misses (J(q) - J(q_d), a few micrometres of tracking error) is part of f.
 //
-// Bandwidths (h = 0.2 ms, linmotor): see GtcfAdrcGains.
+// Bandwidths (h = 0.2 ms, linmotor): see GtcfAdrcGains. Delay: the ESO turns a late command into
+// a disturbance and cancels it one observer time constant later, which adds phase lag to the
+// loop. Linearised per coordinate (continuous, b = b0), the default loop crosses over at
+// 822 rad/s with 41 deg phase margin: delay margin 0.88 ms (SARC's contour loop: 1.4 ms when x
+// carries it, 3.3 ms when y does); in simulation it holds 0.8 ms and fails at 1 ms constant delay.
+// Feeding the observers the command of d periods ago (observer_input_delay = d, d h = the loop
+// delay) makes their model right again (a Smith-predictor-like observer input) and restores the
+// margin up to 2 ms (`netmc sim --preset thesis-ellipse-delay`, README).
 
 #include <array>
+#include <deque>
 #include <memory>
 
 #include "control/contour_controller.hpp"
@@ -62,6 +70,9 @@ struct GtcfAdrcGains {
   // before the loop reacts), and w_o h = 0.3 at h = 0.2 ms (forward-Euler poles 1 - w_o h = 0.7).
   Eigen::Vector2d observer_bandwidth{1500.0, 500.0};
   Discretization discretization = Discretization::forward_euler;
+  // The observers' input is the task command of this many periods ago (0: this period's, as in
+  // paper 001). Matching a known loop delay keeps it out of the disturbance estimate.
+  unsigned observer_input_delay = 0;
 };
 
 class TaskSpaceAdrc final : public ContourController {
@@ -85,6 +96,7 @@ class TaskSpaceAdrc final : public ContourController {
   // continuous coordinate.
   double rm_raw_ = 0.0;
   double rm_unwrapped_ = 0.0;
+  std::deque<Eigen::Vector2d> recent_commands_;  // newest last, observer_input_delay + 1 long
 };
 
 }  // namespace netmc::control

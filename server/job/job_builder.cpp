@@ -162,6 +162,10 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   if (g.has_wom()) s.gtcf_adrc.observer_bandwidth[1] = g.wom();
   s.gtcf_adrc.discretization =
       build_discretization(g.observer(), s.gtcf_adrc.discretization, "controller.gtcf_adrc.observer");
+  if (g.observer_input_delay() > 100000) {
+    throw std::invalid_argument("controller.gtcf_adrc.observer_input_delay: expected at most 100000 periods");
+  }
+  s.gtcf_adrc.observer_input_delay = g.observer_input_delay();
   if (c.pid().has_kp()) s.pid.kp = c.pid().kp();
   if (c.pid().has_ki()) s.pid.ki = c.pid().ki();
   if (c.pid().has_kd()) s.pid.kd = c.pid().kd();

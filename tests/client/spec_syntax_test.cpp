@@ -107,7 +107,10 @@ TEST(SpecSyntax, GtcfAdrcBandwidths) {
   EXPECT_EQ(gains.woc(), 1200.0);  // wo sets both observers
   EXPECT_EQ(gains.wom(), 1200.0);
   EXPECT_EQ(gains.observer(), "zoh");
-  for (const char* bad : {"wc=0", "wo=1000,wom=500", "kp=3", "observer=rk4"}) {
+  EXPECT_EQ(gains.observer_input_delay(), 0u);
+  parse_gtcf_adrc_gains("delay=5", gains);
+  EXPECT_EQ(gains.observer_input_delay(), 5u);
+  for (const char* bad : {"wc=0", "wo=1000,wom=500", "kp=3", "observer=rk4", "delay=1.5", "delay=-1"}) {
     EXPECT_NE(error_of([&] { parse_gtcf_adrc_gains(bad, gains); }).find("--gtcf-adrc"), std::string::npos)
         << bad;
   }
