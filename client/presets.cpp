@@ -59,23 +59,26 @@ namespace {
 // Thesis (paper 000) eq. 2-68: x = 0.2 sin 7t, y = -0.02 cos 7t + 0.02 for 25 s, linear-motor
 // stage, Ts = 0.2 ms, 0.5 um encoder, no network; metrics over 10-25 s (digest 2.12 [A]).
 // Both thesis chapter-2 studies: LTCF-SARC against GTCF-SARC on the linear-motor stage.
+netmc::v1::JobSpec thesis_job(const netmc::v1::Trajectory& trajectory, const std::string& controller,
+                              double evaluation_start_s) {
+  netmc::v1::JobSpec job;
+  *job.mutable_trajectory() = trajectory;
+  job.set_plant("linmotor");
+  job.mutable_controller()->set_name(controller);
+  job.set_sample_period_s(2e-4);
+  job.mutable_sensor()->set_resolution_m(0.5e-6);
+  job.set_evaluation_start_s(evaluation_start_s);
+  job.set_iterations(1);
+  job.set_seed(1);
+  return job;
+}
+
 StudyPlan thesis_study(const std::string& title, const netmc::v1::Trajectory& trajectory,
                        std::vector<PaperRow> paper, const std::string& source) {
   StudyPlan plan;
   plan.title = title;
   plan.steady_metrics = true;
-  for (const char* controller : {"ltcf-sarc", "gtcf-sarc"}) {
-    netmc::v1::JobSpec job;
-    *job.mutable_trajectory() = trajectory;
-    job.set_plant("linmotor");
-    job.mutable_controller()->set_name(controller);
-    job.set_sample_period_s(2e-4);
-    job.mutable_sensor()->set_resolution_m(0.5e-6);
-    job.set_evaluation_start_s(10.0);
-    job.set_iterations(1);
-    job.set_seed(1);
-    plan.jobs.push_back(job);
-  }
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc"}) plan.jobs.push_back(thesis_job(trajectory, controller, 10.0));
   plan.paper = std::move(paper);
   plan.paper_source = source;
   return plan;
@@ -162,15 +165,13 @@ StudyPlan thesis_ellipse_delay() {
   // Mean delay of each column in periods: gtcf-adrc-matched feeds its observers the task command
   // that many periods late (GtcfAdrcGains::observer_input_delay), default bandwidths otherwise.
   const unsigned mean_delay_periods[] = {0, 2, 3, 5, 10, 15};
+  const netmc::v1::Trajectory trajectory = thesis_ellipse_trajectory(10.0);
   for (const char* run : {"ltcf-sarc", "gtcf-sarc", "gtcf-adrc", "gtcf-adrc-matched", "gtcf-adrc-soft", "adrc",
                           "adrc+pidccc"}) {
     const std::string_view label(run);
     for (std::size_t column = 0; column < delays.size(); ++column) {
       const auto& delay = delays[column];
-      netmc::v1::JobSpec job;
-      *job.mutable_trajectory() = thesis_ellipse_trajectory(10.0);
-      job.set_plant("linmotor");
-      job.mutable_controller()->set_name(label.starts_with("gtcf-adrc") ? "gtcf-adrc" : std::string(label));
+      netmc::v1::JobSpec job = thesis_job(trajectory, label.starts_with("gtcf-adrc") ? "gtcf-adrc" : std::string(label), 4.0);
       if (label == "gtcf-adrc-matched") {
         job.set_name(run);
         job.mutable_controller()->mutable_gtcf_adrc()->set_observer_input_delay(mean_delay_periods[column]);
@@ -191,11 +192,6 @@ StudyPlan thesis_ellipse_delay() {
       job.mutable_controller()->mutable_pidccc()->set_ki(0.0);
       job.mutable_controller()->mutable_pidccc()->set_kd(0.0);
       *job.mutable_downlink()->mutable_delay() = delay;
-      job.set_sample_period_s(2e-4);
-      job.mutable_sensor()->set_resolution_m(0.5e-6);
-      job.set_evaluation_start_s(4.0);
-      job.set_iterations(1);
-      job.set_seed(1);
       plan.jobs.push_back(job);
     }
   }

@@ -4,33 +4,16 @@
 // delay U(0.1, 0.5) ms, i.e. up to 2.5 periods. Two revolutions (1.8 s), metrics over the second.
 #include <gtest/gtest.h>
 
-#include <numbers>
-
-#include "control/ellipse_trajectory.hpp"
-#include "plant/plant_catalog.hpp"
 #include "server/sim/contour_job_runner.hpp"
+#include "sim_test_support.hpp"
 
 namespace netmc::sim {
 namespace {
 
 IterationMetrics run_thesis_ellipse(std::unique_ptr<netsim::DelayModel> delay) {
-  ContourJob job;
-  control::EllipseParameters ellipse;
-  ellipse.center = {0.0, 0.02};
-  ellipse.semi_axis_x_m = 0.2;
-  ellipse.semi_axis_y_m = 0.02;
-  ellipse.period_s = 2.0 * std::numbers::pi / 7.0;
-  ellipse.start_angle_rad = -std::numbers::pi / 2.0;
-  ellipse.revolutions = 2.0;
-  job.trajectory = std::make_shared<control::EllipseTrajectory>(ellipse);
-  auto plants = plant::make_plant_set("linmotor", 2);
-  for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
-  job.plant_name = "linmotor";
-  job.controller_name = "gtcf-adrc";
+  ContourJob job = testing::thesis_ellipse_job("gtcf-adrc", 2.0);
   job.downlink.delay = std::move(delay);
-  job.sample_period_s = 2e-4;
-  job.sensor.resolution_m = 0.5e-6;
-  job.evaluation_start_s = ellipse.period_s;
+  job.evaluation_start_s = job.trajectory->period_s();
   job.seed = 3;
   return ContourJobRunner(job).run_iteration().metrics;
 }

@@ -7,30 +7,14 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/ellipse_trajectory.hpp"
-#include "plant/plant_catalog.hpp"
 #include "server/sim/contour_job_runner.hpp"
+#include "sim_test_support.hpp"
 
 namespace netmc::sim {
 namespace {
 
 IterationMetrics run_thesis_ellipse(const std::string& controller) {
-  ContourJob job;
-  control::EllipseParameters ellipse;
-  ellipse.center = {0.0, 0.02};
-  ellipse.semi_axis_x_m = 0.2;
-  ellipse.semi_axis_y_m = 0.02;
-  ellipse.period_s = 2.0 * std::numbers::pi / 7.0;
-  ellipse.start_angle_rad = -std::numbers::pi / 2.0;
-  ellipse.revolutions = 3.0;
-  job.trajectory = std::make_shared<control::EllipseTrajectory>(ellipse);
-  auto plants = plant::make_plant_set("linmotor", 2);
-  for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
-  job.plant_name = "linmotor";
-  job.controller_name = controller;
-  job.sample_period_s = 2e-4;
-  job.sensor.resolution_m = 0.5e-6;
-  return ContourJobRunner(job).run_iteration().metrics;
+  return ContourJobRunner(testing::thesis_ellipse_job(controller, 3.0)).run_iteration().metrics;
 }
 
 TEST(SarcStudy, BothTaskFramesContourTheThesisEllipseWithinMicrometres) {
