@@ -161,7 +161,7 @@ StudyPlan thesis_ellipse_delay() {
   delays[4].set_constant_s(2e-3);
   delays[5].set_constant_s(3e-3);
   // gtcf-adrc-soft: GTCF-ADRC retuned for delay margin (w_c = 120, w_m = 60, observers 4x),
-  // the fastest of the tunings tried that stays stable at 2 ms constant delay.
+  // the most accurate of the tunings tried that hold 2 ms constant delay.
   // Mean delay of each column in periods: gtcf-adrc-matched feeds its observers the task command
   // that many periods late (GtcfAdrcGains::observer_input_delay), default bandwidths otherwise.
   const unsigned mean_delay_periods[] = {0, 2, 3, 5, 10, 15};
