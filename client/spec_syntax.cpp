@@ -229,8 +229,7 @@ netmc::v1::LossProfile parse_loss(std::string_view text, std::string_view flag) 
   return out;
 }
 
-void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains) {
-  constexpr std::string_view flag = "--adrc";
+void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains, std::string_view flag) {
   const auto keys = parse_keys(text, flag, {"r0", "w0", "b0", "kp", "kd", "observer", "observer_input"});
   for (const auto& [key, value] : keys) {
     if (key == "observer") {
@@ -247,6 +246,34 @@ void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains) {
       if (key == "kp") gains.set_kp(number);
       if (key == "kd") gains.set_kd(number);
     }
+  }
+}
+
+void parse_gtcf_adrc_gains(std::string_view text, netmc::v1::GtcfAdrcGains& gains) {
+  constexpr std::string_view flag = "--gtcf-adrc";
+  const auto keys = parse_keys(text, flag, {"wc", "wm", "wo", "woc", "wom", "observer", "delay"});
+  if (keys.contains("wo") && (keys.contains("woc") || keys.contains("wom"))) {
+    fail(flag, "wo sets both observers: give either wo or woc/wom");
+  }
+  for (const auto& [key, value] : keys) {
+    if (key == "observer") {
+      if (value != "euler" && value != "zoh") fail(flag, "observer expects euler or zoh, got '" + value + "'");
+      gains.set_observer(value);
+      continue;
+    }
+    const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
+    if (key == "delay") {
+      if (number < 0 || number != std::floor(number) || number > 100000) {
+        fail(flag, "delay expects a whole number of periods, got '" + value + "'");
+      }
+      gains.set_observer_input_delay(static_cast<std::uint32_t>(number));
+      continue;
+    }
+    if (!(number > 0.0)) fail(flag, key + " expects a positive bandwidth in rad/s, got '" + value + "'");
+    if (key == "wc") gains.set_wc(number);
+    if (key == "wm") gains.set_wm(number);
+    if (key == "wo" || key == "woc") gains.set_woc(number);
+    if (key == "wo" || key == "wom") gains.set_wom(number);
   }
 }
 

@@ -24,8 +24,12 @@ netmc::v1::Trajectory parse_trajectory(std::string_view text);
 netmc::v1::DelayProfile parse_delay(std::string_view text, std::string_view flag);
 // --loss none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]
 netmc::v1::LossProfile parse_loss(std::string_view text, std::string_view flag);
-// --adrc r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent
-void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains);
+// --adrc / --adrc-y r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent
+void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains,
+                      std::string_view flag = "--adrc");
+// --gtcf-adrc wc=..,wm=..,wo=..|woc=..,wom=..,observer=euler|zoh,delay=PERIODS
+// (bandwidths in rad/s; delay: the observers see the task command this many periods late)
+void parse_gtcf_adrc_gains(std::string_view text, netmc::v1::GtcfAdrcGains& gains);
 // --ilc kcp=..,kcd=..,forgetting=..,q=..(Hz),lead=..(samples)
 void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains);
 // --pidccc / --pid kp=..,ki=..,kd=..

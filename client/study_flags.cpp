@@ -98,6 +98,12 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     if (f.iterations != 0) job.set_iterations(static_cast<std::uint32_t>(f.iterations));
     if (f.seed >= 0) job.set_seed(static_cast<std::uint64_t>(f.seed));
     if (!f.adrc.empty()) parse_adrc_gains(f.adrc, *job.mutable_controller()->mutable_adrc());
+    if (!f.adrc_y.empty()) {
+      parse_adrc_gains(f.adrc_y, *job.mutable_controller()->mutable_adrc_y(), "--adrc-y");
+    }
+    if (!f.gtcf_adrc.empty()) {
+      parse_gtcf_adrc_gains(f.gtcf_adrc, *job.mutable_controller()->mutable_gtcf_adrc());
+    }
     if (!f.ilc.empty()) parse_ilc_gains(f.ilc, *job.mutable_controller()->mutable_ilccc());
     if (!f.pidccc.empty()) parse_pid_gains(f.pidccc, *job.mutable_controller()->mutable_pidccc(), "--pidccc");
     if (!f.pid.empty()) parse_pid_gains(f.pid, *job.mutable_controller()->mutable_pid(), "--pid");
@@ -125,11 +131,11 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--clock", flags.clock,
                   "Distributed runs: lockstep (virtual time, equals sim) or realtime (wall clock)")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
-  app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty");
+  app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty, thesis-ellipse, thesis-circle, thesis-ellipse-delay");
   app->add_option("--spec", flags.spec_file, "Job spec as JSON (protobuf JSON mapping of netmc.v1.JobSpec)");
   app->add_option("--trajectory", flags.trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. | line:x0=..,y0=..,x1=..,y1=..,duration=..");
   app->add_option("--plant", flags.plant, "seed001 | ballscrew | linmotor | stage004");
-  app->add_option("--controller", flags.controllers, "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc ...");
+  app->add_option("--controller", flags.controllers, "AXIS[+COMPENSATOR] or a task-space controller, comma-separated: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc, gtcf-sarc, ltcf-sarc, gtcf-adrc ...");
   app->add_option("--delay", flags.delay, "Loop delay on the controller->actuator link: none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=.. | pareto:scale=..,shape=.. | markov:good=A..B,bad=C..D,p_gb=..,p_bg=.. | trace:FILE.csv");
   app->add_option("--uplink-delay", flags.uplink_delay, "Sensor->controller delay (same forms as --delay)");
   app->add_option("--loss", flags.loss, "Setpoint loss: none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]");
@@ -143,6 +149,8 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--iterations", flags.iterations, "ILC iterations per run")->check(CLI::Range(1, 100000));
   app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);
   app->add_option("--adrc", flags.adrc, "ADRC gains: r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent");
+  app->add_option("--adrc-y", flags.adrc_y, "The y axis's ADRC gains where they differ from --adrc (same keys)");
+  app->add_option("--gtcf-adrc", flags.gtcf_adrc, "Task-space ADRC bandwidths [rad/s]: wc=..,wm=..,wo=..|woc=..,wom=..,observer=euler|zoh,delay=PERIODS (observer input delay)");
   app->add_option("--ilc", flags.ilc, "ILC gains: kcp=..,kcd=..,forgetting=..,q=HZ,lead=SAMPLES");
   app->add_option("--pidccc", flags.pidccc, "PID cross-coupling gains: kp=..,ki=..,kd=..");
   app->add_option("--pid", flags.pid, "Per-axis PID gains: kp=..,ki=..,kd=..");

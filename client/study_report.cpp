@@ -55,6 +55,42 @@ void print_steady_table(std::ostream& out, const StudyPlan& plan,
   }
 }
 
+bool delays_differ(const std::vector<RunOutcome>& outcomes) {
+  return std::any_of(outcomes.begin(), outcomes.end(), [&](const RunOutcome& o) {
+    return o.result.delay() != outcomes.front().result.delay();
+  });
+}
+
+// A sweep over loop delays: one row per run label, one column per delay, steady RMS / max (um).
+void print_steady_sweep(std::ostream& out, const std::vector<RunOutcome>& outcomes) {
+  std::vector<std::string> labels, delays;
+  for (const auto& o : outcomes) {
+    if (std::find(labels.begin(), labels.end(), o.result.label()) == labels.end()) labels.push_back(o.result.label());
+    if (std::find(delays.begin(), delays.end(), o.result.delay()) == delays.end()) delays.push_back(o.result.delay());
+  }
+  std::size_t width = 3;
+  for (const auto& label : labels) width = std::max(width, label.size());
+  fmt::print(out, "steady contour error RMS / max [um] by loop delay (downlink)\n{:<{}}", "run", width);
+  for (const auto& delay : delays) fmt::print(out, " {:>24}", delay);
+  fmt::print(out, "\n");
+  for (const auto& label : labels) {
+    fmt::print(out, "{:<{}}", label, width);
+    for (const auto& delay : delays) {
+      const auto found = std::find_if(outcomes.begin(), outcomes.end(), [&](const RunOutcome& o) {
+        return o.result.label() == label && o.result.delay() == delay;
+      });
+      std::string cell = "-";
+      if (found != outcomes.end()) {
+        const auto& m = last(*found);
+        cell = m.diverged() ? fmt::format("unstable at {:.2f} s", m.diverged_at_s())
+                            : fmt::format("{:.2f} / {:.2f}", m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6);
+      }
+      fmt::print(out, " {:>24}", cell);
+    }
+    fmt::print(out, "\n");
+  }
+}
+
 }  // namespace
 
 void print_study_table(std::ostream& out, const StudyPlan& plan,
@@ -62,10 +98,15 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
   if (outcomes.empty()) return;
   if (plan.steady_metrics) {
     const auto& first = outcomes.front().result;
+    const bool sweep = delays_differ(outcomes);
     fmt::print(out, "{}\ntrajectory {} | plant {} | delay {} | h = {} ms | seed {}\n\n", plan.title,
-               first.trajectory(), first.plant(), first.delay(), first.sample_period_s() * 1e3,
-               first.seed());
-    print_steady_table(out, plan, outcomes);
+               first.trajectory(), first.plant(), sweep ? "by column" : first.delay(),
+               first.sample_period_s() * 1e3, first.seed());
+    if (sweep) {
+      print_steady_sweep(out, outcomes);
+    } else {
+      print_steady_table(out, plan, outcomes);
+    }
     return;
   }
   const auto& first = outcomes.front().result;

@@ -6,7 +6,7 @@ namespace netmc::control {
 namespace {
 
 std::string usage() {
-  return "expected gtcf-sarc, ltcf-sarc, AXIS or AXIS+COMPENSATOR with AXIS one of adrc, pid and "
+  return "expected gtcf-sarc, ltcf-sarc, gtcf-adrc, AXIS or AXIS+COMPENSATOR with AXIS one of adrc, pid and "
          "COMPENSATOR one of pidccc, ilccc";
 }
 
@@ -43,7 +43,10 @@ ContouringController make_contouring_controller(std::string_view name,
     throw std::invalid_argument("controller: unknown name '" + std::string(name) + "' (" +
                                 usage() + ")");
   }
-  auto y_axis = x_axis->clone();
+  std::unique_ptr<AxisController> y_axis =
+      axis_name == "adrc" && settings.adrc_y
+          ? std::make_unique<AdrcController>(*settings.adrc_y, sample_period_s)
+          : x_axis->clone();
   return ContouringController(std::move(x_axis), std::move(y_axis),
                               make_contour_error_estimator(settings.estimator),
                               std::move(compensator));
@@ -55,6 +58,9 @@ std::unique_ptr<ContourController> make_contour_controller(std::string_view name
                                                            const ReferenceTrajectory& trajectory) {
   if (name == "gtcf-sarc") {
     return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, make_task_frame(trajectory));
+  }
+  if (name == "gtcf-adrc") {
+    return std::make_unique<TaskSpaceAdrc>(settings.gtcf_adrc, sample_period_s, make_task_frame(trajectory));
   }
   if (name == "ltcf-sarc") return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, nullptr);
   return std::make_unique<ContouringController>(make_contouring_controller(name, settings, sample_period_s));

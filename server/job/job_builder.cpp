@@ -137,21 +137,43 @@ sim::LinkProfile build_link(const netmc::v1::LinkProfile& link, const std::strin
   return out;
 }
 
+control::Discretization build_discretization(const std::string& observer, control::Discretization fallback,
+                                             const std::string& field) {
+  if (observer.empty()) return fallback;
+  if (observer == "euler") return control::Discretization::forward_euler;
+  if (observer == "zoh") return control::Discretization::zero_order_hold;
+  throw std::invalid_argument(field + ": expected 'euler' or 'zoh', got '" + observer + "'");
+}
+
+// The fields set in `a` over `base`.
+control::AdrcGains build_adrc(const netmc::v1::AdrcGains& a, control::AdrcGains base,
+                              const std::string& field) {
+  if (a.has_r0()) base.td_speed_factor = a.r0();
+  if (a.has_w0()) base.observer_bandwidth = a.w0();
+  if (a.has_b0()) base.input_gain = a.b0();
+  if (a.has_kp()) base.kp = a.kp();
+  if (a.has_kd()) base.kd = a.kd();
+  base.observer_discretization =
+      build_discretization(a.observer(), base.observer_discretization, field + ".observer");
+  if (a.observer_sees_sent_command()) base.observer_sees_sent_command = true;
+  return base;
+}
+
 control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   control::ControllerSettings s;
-  const auto& a = c.adrc();
-  if (a.has_r0()) s.adrc.td_speed_factor = a.r0();
-  if (a.has_w0()) s.adrc.observer_bandwidth = a.w0();
-  if (a.has_b0()) s.adrc.input_gain = a.b0();
-  if (a.has_kp()) s.adrc.kp = a.kp();
-  if (a.has_kd()) s.adrc.kd = a.kd();
-  if (a.observer() == "zoh") {
-    s.adrc.observer_discretization = control::Discretization::zero_order_hold;
-  } else if (!a.observer().empty() && a.observer() != "euler") {
-    throw std::invalid_argument("controller.adrc.observer: expected 'euler' or 'zoh', got '" +
-                                a.observer() + "'");
+  s.adrc = build_adrc(c.adrc(), s.adrc, "controller.adrc");
+  if (c.has_adrc_y()) s.adrc_y = build_adrc(c.adrc_y(), s.adrc, "controller.adrc_y");
+  const auto& g = c.gtcf_adrc();
+  if (g.has_wc()) s.gtcf_adrc.loop_bandwidth[0] = g.wc();
+  if (g.has_wm()) s.gtcf_adrc.loop_bandwidth[1] = g.wm();
+  if (g.has_woc()) s.gtcf_adrc.observer_bandwidth[0] = g.woc();
+  if (g.has_wom()) s.gtcf_adrc.observer_bandwidth[1] = g.wom();
+  s.gtcf_adrc.discretization =
+      build_discretization(g.observer(), s.gtcf_adrc.discretization, "controller.gtcf_adrc.observer");
+  if (g.observer_input_delay() > 100000) {
+    throw std::invalid_argument("controller.gtcf_adrc.observer_input_delay: expected at most 100000 periods");
   }
-  s.adrc.observer_sees_sent_command = a.observer_sees_sent_command();
+  s.gtcf_adrc.observer_input_delay = g.observer_input_delay();
   if (c.pid().has_kp()) s.pid.kp = c.pid().kp();
   if (c.pid().has_ki()) s.pid.ki = c.pid().ki();
   if (c.pid().has_kd()) s.pid.kd = c.pid().kd();

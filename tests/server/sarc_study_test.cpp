@@ -7,10 +7,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/ellipse_trajectory.hpp"
 #include "control/halted_trajectory.hpp"
-#include "plant/plant_catalog.hpp"
 #include "server/sim/contour_job_runner.hpp"
+#include "sim_test_support.hpp"
 
 namespace netmc::sim {
 namespace {
@@ -18,25 +17,11 @@ namespace {
 // halt_at_s < 0: no halt (case C); otherwise case D's 4 ms halt at that time, command limited
 // to the thesis DAC's 10 V.
 IterationMetrics run_thesis_ellipse(const std::string& controller, double halt_at_s = -1.0) {
-  ContourJob job;
-  control::EllipseParameters ellipse;
-  ellipse.center = {0.0, 0.02};
-  ellipse.semi_axis_x_m = 0.2;
-  ellipse.semi_axis_y_m = 0.02;
-  ellipse.period_s = 2.0 * std::numbers::pi / 7.0;
-  ellipse.start_angle_rad = -std::numbers::pi / 2.0;
-  ellipse.revolutions = 3.0;
-  job.trajectory = std::make_shared<control::EllipseTrajectory>(ellipse);
+  ContourJob job = testing::thesis_ellipse_job(controller, 3.0);
   if (halt_at_s >= 0.0) {
     job.trajectory = std::make_shared<control::HaltedTrajectory>(job.trajectory, halt_at_s, 0.004);
     job.command_limit = 10.0;
   }
-  auto plants = plant::make_plant_set("linmotor", 2);
-  for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
-  job.plant_name = "linmotor";
-  job.controller_name = controller;
-  job.sample_period_s = 2e-4;
-  job.sensor.resolution_m = 0.5e-6;
   return ContourJobRunner(job).run_iteration().metrics;
 }
 
