@@ -49,36 +49,40 @@ netmc::v1::JobSpec seed001_job(const std::string& controller) {
 
 std::vector<std::string> preset_names() {
   return {"seed001", "seed001-ellipse", "seed001-line", "seed001-long-delay", "seed001-bursty",
-          "thesis-ellipse", "thesis-circle"};
+          "thesis-ellipse", "thesis-circle", "thesis-darc"};
 }
 
 namespace {
 
-// Thesis (paper 000) eq. 2-68: x = 0.2 sin 7t, y = -0.02 cos 7t + 0.02 for 25 s, linear-motor
-// stage, Ts = 0.2 ms, 0.5 um encoder, no network; metrics over 10-25 s (digest 2.12 [A]).
-// Both thesis chapter-2 studies: LTCF-SARC against GTCF-SARC on the linear-motor stage.
-StudyPlan thesis_study(const std::string& title, const netmc::v1::Trajectory& trajectory,
-                       std::vector<PaperRow> paper, const std::string& source) {
+// Thesis (paper 000) studies: the linear-motor stage, Ts = 0.2 ms, 0.5 um encoder, no network,
+// one run per controller, judged on the steady metrics from `evaluation_start_s`.
+netmc::v1::JobSpec thesis_job(const netmc::v1::Trajectory& trajectory, const std::string& controller,
+                              const std::string& label, double evaluation_start_s) {
+  netmc::v1::JobSpec job;
+  job.set_name(label);
+  *job.mutable_trajectory() = trajectory;
+  job.set_plant("linmotor");
+  job.mutable_controller()->set_name(controller);
+  job.set_sample_period_s(2e-4);
+  job.mutable_sensor()->set_resolution_m(0.5e-6);
+  job.set_evaluation_start_s(evaluation_start_s);
+  job.set_iterations(1);
+  job.set_seed(1);
+  return job;
+}
+
+StudyPlan thesis_plan(const std::string& title, std::vector<PaperRow> paper, const std::string& source) {
   StudyPlan plan;
   plan.title = title;
   plan.steady_metrics = true;
-  for (const char* controller : {"ltcf-sarc", "gtcf-sarc"}) {
-    netmc::v1::JobSpec job;
-    *job.mutable_trajectory() = trajectory;
-    job.set_plant("linmotor");
-    job.mutable_controller()->set_name(controller);
-    job.set_sample_period_s(2e-4);
-    job.mutable_sensor()->set_resolution_m(0.5e-6);
-    job.set_evaluation_start_s(10.0);
-    job.set_iterations(1);
-    job.set_seed(1);
-    plan.jobs.push_back(job);
-  }
   plan.paper = std::move(paper);
   plan.paper_source = source;
   return plan;
 }
 
+// Thesis eq. 2-68 (case C): x = 0.2 sin 7t, y = -0.02 cos 7t + 0.02 for 25 s; metrics over
+// 10-25 s (digest 2.12 [A]). DARC (ch. 3) beside the chapter's SARC; the thesis has no DARC
+// run on this ellipse.
 StudyPlan thesis_ellipse() {
   netmc::v1::Trajectory t;
   auto& e = *t.mutable_ellipse();
@@ -89,25 +93,80 @@ StudyPlan thesis_ellipse() {
   e.set_period_s(2.0 * std::numbers::pi / 7.0);
   e.set_start_angle_rad(-std::numbers::pi / 2.0);
   e.set_revolutions(25.0 * 7.0 / (2.0 * std::numbers::pi));  // 25 s
-  return thesis_study("thesis Table 2-2 (case C): 10:1 ellipse at 7 rad/s, linear motors, Ts = 0.2 ms", t,
-                      {{"ltcf-sarc", 5.66e-6, 22.37e-6}, {"gtcf-sarc", 2.20e-6, 6.73e-6}},
-                      "thesis Table 2-2 (C)");
+  StudyPlan plan = thesis_plan("thesis Table 2-2 (case C): 10:1 ellipse at 7 rad/s, linear motors, Ts = 0.2 ms",
+                               {{"ltcf-sarc", 5.66e-6, 22.37e-6}, {"gtcf-sarc", 2.20e-6, 6.73e-6}},
+                               "thesis Table 2-2 (C)");
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "gtcf-darc"}) {
+    plan.jobs.push_back(thesis_job(t, controller, controller, 10.0));
+  }
+  return plan;
 }
 
-// Thesis eq. 2-65 (case A, zero initial error): x = 0.04 sin 15t, y = -0.04 cos 15t + 0.04,
-// 30 s, metrics over 10-30 s.
+// The drive is linear up to about 8 V (thesis appendix A, digest 2.11): case B starts 6 cm off
+// the desired point, where the unfiltered feedback asks for hundreds of volts.
+constexpr double kThesisDriveLimitV = 8.0;
+
+// Thesis eq. 2-65 (case A, zero initial error): x = 0.04 sin 15t, y = -0.04 cos 15t + 0.04;
+// eq. 2-66 (case B, large initial error): x = 0.04 cos 15t, y = -0.04 sin 15t + 0.05 (clockwise)
+// with the stage at rest at (0, 0), GTCF with the initialization filter (eq. 2-67, wc = 8,
+// wm = 1). 30 s, metrics over 10-30 s. Case B runs with an 8 V command limit.
 StudyPlan thesis_circle() {
+  netmc::v1::Trajectory a;
+  auto& ca = *a.mutable_circle();
+  ca.set_radius_m(0.04);
+  ca.set_center_x_m(0.0);
+  ca.set_center_y_m(0.04);
+  ca.set_period_s(2.0 * std::numbers::pi / 15.0);
+  ca.set_start_angle_rad(-std::numbers::pi / 2.0);
+  ca.set_revolutions(30.0 * 15.0 / (2.0 * std::numbers::pi));  // 30 s
+  netmc::v1::Trajectory b = a;
+  auto& cb = *b.mutable_circle();
+  cb.set_center_y_m(0.05);
+  cb.set_start_angle_rad(0.0);
+  cb.set_clockwise(true);
+
+  StudyPlan plan = thesis_plan(
+      "thesis Table 2-1: circle r = 4 cm at 15 rad/s, linear motors, Ts = 0.2 ms; case A from the "
+      "desired start, case B from rest at (0, 0) with an 8 V drive limit",
+      {{"ltcf-sarc A", 13.33e-6, 31.54e-6}, {"gtcf-sarc A", 9.92e-6, 25.89e-6}, {"gtcf-sarc B", 7.43e-6, 21.19e-6}},
+      "thesis Table 2-1");
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "gtcf-darc"}) {
+    plan.jobs.push_back(thesis_job(a, controller, std::string(controller) + " A", 10.0));
+  }
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "gtcf-darc"}) {
+    auto job = thesis_job(b, controller, std::string(controller) + " B", 10.0);
+    job.mutable_initial_position()->set_x_m(0.0);
+    job.mutable_initial_position()->set_y_m(0.0);
+    job.set_command_limit(kThesisDriveLimitV);
+    // The filter lives in the global frame; the local-frame controller meets the raw error (as
+    // the thesis's C1, which saturates and goes unstable here).
+    if (std::string(controller).starts_with("gtcf")) {
+      job.mutable_controller()->mutable_task_space()->set_initialization_filter(true);
+    }
+    plan.jobs.push_back(job);
+  }
+  return plan;
+}
+
+// Thesis ch. 3, Exp I (eq. 3-48): x = 0.2 sin 4t, y = -0.1 cos 4t + 0.1, 10 s, metrics over
+// 2-10 s (digest 2.12 [A]), Set1 (no load). GTCF-DARC is the thesis's C1; the SARC rows and
+// LTCF-DARC have no thesis counterpart in this table (its C3 is LTCF-DIARC).
+StudyPlan thesis_darc() {
   netmc::v1::Trajectory t;
-  auto& c = *t.mutable_circle();
-  c.set_radius_m(0.04);
-  c.set_center_x_m(0.0);
-  c.set_center_y_m(0.04);
-  c.set_period_s(2.0 * std::numbers::pi / 15.0);
-  c.set_start_angle_rad(-std::numbers::pi / 2.0);
-  c.set_revolutions(30.0 * 15.0 / (2.0 * std::numbers::pi));  // 30 s
-  return thesis_study("thesis Table 2-1 (case A): circle r = 4 cm at 15 rad/s, linear motors, Ts = 0.2 ms", t,
-                      {{"ltcf-sarc", 13.33e-6, 31.54e-6}, {"gtcf-sarc", 9.92e-6, 25.89e-6}},
-                      "thesis Table 2-1 (A)");
+  auto& e = *t.mutable_ellipse();
+  e.set_semi_axis_x_m(0.2);
+  e.set_semi_axis_y_m(0.1);
+  e.set_center_x_m(0.0);
+  e.set_center_y_m(0.1);
+  e.set_period_s(2.0 * std::numbers::pi / 4.0);
+  e.set_start_angle_rad(-std::numbers::pi / 2.0);
+  e.set_revolutions(10.0 * 4.0 / (2.0 * std::numbers::pi));  // 10 s
+  StudyPlan plan = thesis_plan("thesis Table 3-1 (Exp I, Set1): 2:1 ellipse at 4 rad/s, linear motors, Ts = 0.2 ms",
+                               {{"gtcf-darc", 2.42e-6, 8.57e-6}}, "thesis Table 3-1 (Set1)");
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "ltcf-darc", "gtcf-darc"}) {
+    plan.jobs.push_back(thesis_job(t, controller, controller, 2.0));
+  }
+  return plan;
 }
 
 }  // namespace
@@ -162,6 +221,7 @@ StudyPlan make_preset(std::string_view name) {
   }
   if (name == "thesis-ellipse") return thesis_ellipse();
   if (name == "thesis-circle") return thesis_circle();
+  if (name == "thesis-darc") return thesis_darc();
   std::string expected;
   for (const auto& n : preset_names()) expected += (expected.empty() ? "" : ", ") + n;
   throw std::invalid_argument("--preset: unknown name '" + std::string(name) +

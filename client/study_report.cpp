@@ -24,6 +24,12 @@ const PaperRow* paper_row(const StudyPlan& plan, const std::string& controller) 
   return nullptr;
 }
 
+// A paper row keyed by the run's label (several runs of one controller), else by its controller.
+const PaperRow* paper_row(const StudyPlan& plan, const netmc::v1::RunResult& run) {
+  if (const PaperRow* row = paper_row(plan, run.label())) return row;
+  return paper_row(plan, run.controller());
+}
+
 }  // namespace
 
 namespace {
@@ -44,7 +50,7 @@ void print_steady_table(std::ostream& out, const StudyPlan& plan,
     fmt::print(out, "{:<18} {:>17.2f} {:>17.2f} {:>10.3f}  {:>11.2f} {:>11.2f}", outcome.result.label(),
                m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6,
                m.e_rms_steady_m() / first.e_rms_steady_m(), m.command_rms(0), m.command_rms(1));
-    if (const PaperRow* row = paper_row(plan, outcome.result.controller())) {
+    if (const PaperRow* row = paper_row(plan, outcome.result)) {
       fmt::print(out, "  {:>16.2f} {:>16.2f}", row->e_max_m * 1e6, row->e_sum_m * 1e6);
     }
     fmt::print(out, "\n");
