@@ -56,6 +56,7 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     plan.jobs.clear();
     for (const auto& name : names) {
       netmc::v1::JobSpec job = base;
+      job.clear_name();  // labelled by its controller, not by the base job's label
       job.mutable_controller()->set_name(name);
       plan.jobs.push_back(job);
     }
