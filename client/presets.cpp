@@ -71,6 +71,21 @@ netmc::v1::JobSpec thesis_job(const netmc::v1::Trajectory& trajectory, const std
   return job;
 }
 
+// x = a sin wt, y = b - b cos wt for `duration_s`: the thesis's ellipses, counter-clockwise
+// from the origin.
+netmc::v1::Trajectory thesis_ellipse_motion(double a, double b, double omega, double duration_s) {
+  netmc::v1::Trajectory t;
+  auto& e = *t.mutable_ellipse();
+  e.set_semi_axis_x_m(a);
+  e.set_semi_axis_y_m(b);
+  e.set_center_x_m(0.0);
+  e.set_center_y_m(b);
+  e.set_period_s(2.0 * std::numbers::pi / omega);
+  e.set_start_angle_rad(-std::numbers::pi / 2.0);
+  e.set_revolutions(duration_s * omega / (2.0 * std::numbers::pi));
+  return t;
+}
+
 StudyPlan thesis_plan(const std::string& title, std::vector<PaperRow> paper, const std::string& source) {
   StudyPlan plan;
   plan.title = title;
@@ -84,15 +99,7 @@ StudyPlan thesis_plan(const std::string& title, std::vector<PaperRow> paper, con
 // 10-25 s (digest 2.12 [A]). DARC (ch. 3) beside the chapter's SARC; the thesis has no DARC
 // run on this ellipse.
 StudyPlan thesis_ellipse() {
-  netmc::v1::Trajectory t;
-  auto& e = *t.mutable_ellipse();
-  e.set_semi_axis_x_m(0.2);
-  e.set_semi_axis_y_m(0.02);
-  e.set_center_x_m(0.0);
-  e.set_center_y_m(0.02);
-  e.set_period_s(2.0 * std::numbers::pi / 7.0);
-  e.set_start_angle_rad(-std::numbers::pi / 2.0);
-  e.set_revolutions(25.0 * 7.0 / (2.0 * std::numbers::pi));  // 25 s
+  const netmc::v1::Trajectory t = thesis_ellipse_motion(0.2, 0.02, 7.0, 25.0);
   StudyPlan plan = thesis_plan("thesis Table 2-2 (case C): 10:1 ellipse at 7 rad/s, linear motors, Ts = 0.2 ms",
                                {{"ltcf-sarc", 5.66e-6, 22.37e-6}, {"gtcf-sarc", 2.20e-6, 6.73e-6}},
                                "thesis Table 2-2 (C)");
@@ -152,15 +159,7 @@ StudyPlan thesis_circle() {
 // 2-10 s (digest 2.12 [A]), Set1 (no load). GTCF-DARC is the thesis's C1; the SARC rows and
 // LTCF-DARC have no thesis counterpart in this table (its C3 is LTCF-DIARC).
 StudyPlan thesis_darc() {
-  netmc::v1::Trajectory t;
-  auto& e = *t.mutable_ellipse();
-  e.set_semi_axis_x_m(0.2);
-  e.set_semi_axis_y_m(0.1);
-  e.set_center_x_m(0.0);
-  e.set_center_y_m(0.1);
-  e.set_period_s(2.0 * std::numbers::pi / 4.0);
-  e.set_start_angle_rad(-std::numbers::pi / 2.0);
-  e.set_revolutions(10.0 * 4.0 / (2.0 * std::numbers::pi));  // 10 s
+  const netmc::v1::Trajectory t = thesis_ellipse_motion(0.2, 0.1, 4.0, 10.0);
   StudyPlan plan = thesis_plan("thesis Table 3-1 (Exp I, Set1): 2:1 ellipse at 4 rad/s, linear motors, Ts = 0.2 ms",
                                {{"gtcf-darc", 2.42e-6, 8.57e-6}}, "thesis Table 3-1 (Set1)");
   for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "ltcf-darc", "gtcf-darc"}) {
