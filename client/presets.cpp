@@ -156,13 +156,17 @@ StudyPlan thesis_circle() {
 }
 
 // Thesis ch. 3, Exp I (eq. 3-48): x = 0.2 sin 4t, y = -0.1 cos 4t + 0.1, 10 s, metrics over
-// 2-10 s (digest 2.12 [A]), Set1 (no load). GTCF-DARC is the thesis's C1; the SARC rows and
-// LTCF-DARC have no thesis counterpart in this table (its C3 is LTCF-DIARC).
+// 2-10 s (digest 2.12 [A]), Set1 (no load): the thesis's C1 GTCF-DARC, C2 GTCF-DIARC and C3
+// LTCF-DIARC (digest 2.7 [A]: built from the LTCF of 2.4 and DIARC), beside both frames of SARC,
+// which the thesis did not run here.
 StudyPlan thesis_darc() {
   const netmc::v1::Trajectory t = thesis_ellipse_motion(0.2, 0.1, 4.0, 10.0);
   StudyPlan plan = thesis_plan("thesis Table 3-1 (Exp I, Set1): 2:1 ellipse at 4 rad/s, linear motors, Ts = 0.2 ms",
-                               {{"gtcf-darc", 2.42e-6, 8.57e-6}}, "thesis Table 3-1 (Set1)");
-  for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "ltcf-darc", "gtcf-darc"}) {
+                               {{"gtcf-darc", 2.42e-6, 8.57e-6},
+                                {"gtcf-diarc", 2.42e-6, 8.15e-6},
+                                {"ltcf-diarc", 3.30e-6, 10.14e-6}},
+                               "thesis Table 3-1 (Set1)");
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "ltcf-darc", "gtcf-darc", "ltcf-diarc", "gtcf-diarc"}) {
     plan.jobs.push_back(thesis_job(t, controller, controller, 2.0));
   }
   return plan;

@@ -6,7 +6,7 @@ namespace netmc::control {
 namespace {
 
 std::string usage() {
-  return "expected gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, AXIS or AXIS+COMPENSATOR with AXIS one of adrc, pid and "
+  return "expected gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, AXIS or AXIS+COMPENSATOR with AXIS one of adrc, pid and "
          "COMPENSATOR one of pidccc, ilccc";
 }
 
@@ -62,6 +62,10 @@ std::unique_ptr<ContourController> make_contour_controller(std::string_view name
     return std::make_unique<TaskSpaceDarc>(settings.darc, sample_period_s, make_task_frame(trajectory), filter);
   }
   if (name == "ltcf-darc") return std::make_unique<TaskSpaceDarc>(settings.darc, sample_period_s, nullptr, filter);
+  if (name == "gtcf-diarc") {
+    return std::make_unique<TaskSpaceDiarc>(settings.diarc, sample_period_s, make_task_frame(trajectory), filter);
+  }
+  if (name == "ltcf-diarc") return std::make_unique<TaskSpaceDiarc>(settings.diarc, sample_period_s, nullptr, filter);
   return std::make_unique<ContouringController>(make_contouring_controller(name, settings, sample_period_s));
 }
 

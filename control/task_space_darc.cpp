@@ -1,11 +1,11 @@
 #include "control/task_space_darc.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 
+#include "control/box_projection.hpp"
 #include "control/parameter_check.hpp"
 
 namespace netmc::control {
@@ -66,10 +66,7 @@ ContouringCycle TaskSpaceDarc::step(std::size_t cycle, const ReferencePoint& ref
   // eq. 3-23 tau = Psi^T s = -Phi_c^T J^-1 s; eq. 3-11/3-12 discontinuous projection.
   const ParameterVector tau = -phi.transpose() * (state.inverse * state.s);
   for (int i = 0; i < 8; ++i) {
-    const double rate = gains_.adaptation[i] * tau[i];
-    const bool blocked = (estimate_[i] >= gains_.upper[i] && rate > 0.0) ||
-                         (estimate_[i] <= gains_.lower[i] && rate < 0.0);
-    if (!blocked) estimate_[i] = std::clamp(estimate_[i] + h_ * rate, gains_.lower[i], gains_.upper[i]);
+    estimate_[i] = projected_step(estimate_[i], gains_.adaptation[i] * tau[i], gains_.lower[i], gains_.upper[i], h_);
   }
   return out;
 }

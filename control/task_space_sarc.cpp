@@ -1,10 +1,10 @@
 #include "control/task_space_sarc.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
+#include "control/box_projection.hpp"
 #include "control/parameter_check.hpp"
 
 namespace netmc::control {
@@ -47,13 +47,8 @@ ContouringCycle TaskSpaceSarc::step(std::size_t cycle, const ReferencePoint& ref
   // eq. 2-58/2-59: gradient adaptation with projection onto |F_l,i| <= F_M,i
   const Eigen::Vector2d direction = state.inverse * state.s;
   for (int i = 0; i < 2; ++i) {
-    const double rate = -gains_.adaptation[i] * direction[i];
-    const bool blocked = (estimate_[i] >= gains_.uncertainty_bound[i] && rate > 0.0) ||
-                         (estimate_[i] <= -gains_.uncertainty_bound[i] && rate < 0.0);
-    if (!blocked) {
-      estimate_[i] = std::clamp(estimate_[i] + h_ * rate, -gains_.uncertainty_bound[i],
-                                gains_.uncertainty_bound[i]);
-    }
+    estimate_[i] = projected_step(estimate_[i], -gains_.adaptation[i] * direction[i],
+                                  -gains_.uncertainty_bound[i], gains_.uncertainty_bound[i], h_);
   }
   return out;
 }
