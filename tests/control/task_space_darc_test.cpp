@@ -7,8 +7,8 @@
 #include <numbers>
 
 #include "control/circle_trajectory.hpp"
-#include "control/ellipse_trajectory.hpp"
 #include "control/task_space_darc.hpp"
+#include "tests/control/thesis_model_support.hpp"
 
 namespace netmc::control {
 namespace {
@@ -43,41 +43,12 @@ TEST(TaskSpaceDarc, ProjectionKeepsEveryParameterInsideItsBox) {
   EXPECT_THROW(TaskSpaceDarc(outside, kH, nullptr), std::invalid_argument);
 }
 
-// The plant of eq. 3-2 with the controller's own structure: M q'' + B q' + A S_f(q') = u + d_n.
-struct ModelPlant {
-  ParameterVector theta;
-  Eigen::Vector2d q = Eigen::Vector2d::Zero(), v = Eigen::Vector2d::Zero();
-  Eigen::Vector2d acceleration(const Eigen::Vector2d& velocity, const Eigen::Vector2d& u) const {
-    Eigen::Vector2d a;
-    for (int i = 0; i < 2; ++i) {
-      const double friction = theta[4 + i] * 2.0 / std::numbers::pi * std::atan(9000.0 * velocity[i]);
-      a[i] = (u[i] + theta[6 + i] - theta[2 + i] * velocity[i] - friction) / theta[i];
-    }
-    return a;
-  }
-  void advance(const Eigen::Vector2d& u, double h) {  // RK4, 10 sub-steps (friction is stiff)
-    const double dt = h / 10.0;
-    for (int n = 0; n < 10; ++n) {
-      const Eigen::Vector2d k1q = v, k1v = acceleration(v, u);
-      const Eigen::Vector2d k2q = v + 0.5 * dt * k1v, k2v = acceleration(k2q, u);
-      const Eigen::Vector2d k3q = v + 0.5 * dt * k2v, k3v = acceleration(k3q, u);
-      const Eigen::Vector2d k4q = v + dt * k3v, k4v = acceleration(k4q, u);
-      q += dt / 6.0 * (k1q + 2.0 * k2q + 2.0 * k3q + k4q);
-      v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-    }
-  }
-};
+using thesis_support::exp_i_ellipse;
+using thesis_support::ModelPlant;
 
 TEST(TaskSpaceDarc, WithOnlyParametricUncertaintyTheContourErrorVanishesAndThetaHatLearns) {
   // Thesis Exp I ellipse (eq. 3-48): x = 0.2 sin 4t, y = 0.1 - 0.1 cos 4t, 8 revolutions.
-  EllipseParameters p;
-  p.center = {0.0, 0.1};
-  p.semi_axis_x_m = 0.2;
-  p.semi_axis_y_m = 0.1;
-  p.period_s = 2.0 * std::numbers::pi / 4.0;
-  p.start_angle_rad = -std::numbers::pi / 2.0;
-  p.revolutions = 8.0;
-  const EllipseTrajectory ellipse(p);
+  const EllipseTrajectory ellipse = exp_i_ellipse(8.0);
   // Gamma = 1e4 throughout: with the thesis's 10 for the physical parameters the adaptation
   // rate Gamma Phi^T J^-1 s is ~1e-3 per second once s is small, too slow to see in seconds.
   DarcGains gains;
@@ -96,7 +67,7 @@ TEST(TaskSpaceDarc, WithOnlyParametricUncertaintyTheContourErrorVanishesAndTheta
     return (darc_regressor(r.acceleration, r.velocity, gains.friction_slope) * (estimate - plant.theta)).squaredNorm();
   };
   const auto cycles = static_cast<std::size_t>(ellipse.duration_s() / kH);
-  const auto period = static_cast<std::size_t>(p.period_s / kH);
+  const auto period = static_cast<std::size_t>(ellipse.period_s() / kH);
   double first_square = 0.0, last_square = 0.0, initial_model = 0.0, final_model = 0.0;
   for (std::size_t k = 0; k < cycles; ++k) {
     const double t = static_cast<double>(k) * kH;

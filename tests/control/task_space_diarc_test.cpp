@@ -7,8 +7,8 @@
 #include <numbers>
 
 #include "control/circle_trajectory.hpp"
-#include "control/ellipse_trajectory.hpp"
 #include "control/task_space_diarc.hpp"
+#include "tests/control/thesis_model_support.hpp"
 
 namespace netmc::control {
 namespace {
@@ -48,41 +48,12 @@ TEST(TaskSpaceDiarc, EstimatesStayInsideTheirBoxes) {
   EXPECT_EQ(diarc.disturbance_estimate().cwiseAbs().maxCoeff(), 1.0);  // pushed onto its bound
 }
 
-// The plant of eq. 3-2 with the controller's own structure: M q'' + B q' + A S_f(q') = u + d_n.
-struct ModelPlant {
-  ParameterVector theta;
-  Eigen::Vector2d q = Eigen::Vector2d::Zero(), v = Eigen::Vector2d::Zero();
-  Eigen::Vector2d acceleration(const Eigen::Vector2d& velocity, const Eigen::Vector2d& u) const {
-    Eigen::Vector2d a;
-    for (int i = 0; i < 2; ++i) {
-      const double friction = theta[4 + i] * 2.0 / std::numbers::pi * std::atan(9000.0 * velocity[i]);
-      a[i] = (u[i] + theta[6 + i] - theta[2 + i] * velocity[i] - friction) / theta[i];
-    }
-    return a;
-  }
-  void advance(const Eigen::Vector2d& u, double h) {  // RK4, 10 sub-steps (friction is stiff)
-    const double dt = h / 10.0;
-    for (int n = 0; n < 10; ++n) {
-      const Eigen::Vector2d k1q = v, k1v = acceleration(v, u);
-      const Eigen::Vector2d k2q = v + 0.5 * dt * k1v, k2v = acceleration(k2q, u);
-      const Eigen::Vector2d k3q = v + 0.5 * dt * k2v, k3v = acceleration(k3q, u);
-      const Eigen::Vector2d k4q = v + dt * k3v, k4v = acceleration(k4q, u);
-      q += dt / 6.0 * (k1q + 2.0 * k2q + 2.0 * k3q + k4q);
-      v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-    }
-  }
-};
+using thesis_support::exp_i_ellipse;
+using thesis_support::ModelPlant;
 
 TEST(TaskSpaceDiarc, LeastSquaresFindsTheTrueParametersWithOnlyParametricUncertainty) {
   // Thesis Exp I ellipse (eq. 3-48), 8 revolutions, the thesis's C2 gains.
-  EllipseParameters p;
-  p.center = {0.0, 0.1};
-  p.semi_axis_x_m = 0.2;
-  p.semi_axis_y_m = 0.1;
-  p.period_s = 2.0 * std::numbers::pi / 4.0;
-  p.start_angle_rad = -std::numbers::pi / 2.0;
-  p.revolutions = 8.0;
-  const EllipseTrajectory ellipse(p);
+  const EllipseTrajectory ellipse = exp_i_ellipse(8.0);
   const DiarcGains gains;
   ModelPlant plant;
   plant.theta << 0.15, 0.62, 0.4, 0.45, 0.12, 0.2, 0.1, -0.15;  // inside the box (3-47)
@@ -91,7 +62,7 @@ TEST(TaskSpaceDiarc, LeastSquaresFindsTheTrueParametersWithOnlyParametricUncerta
   TaskSpaceDiarc diarc(gains, kH, make_task_frame(ellipse));
   diarc.begin_iteration(plant.q, 0);
   const auto cycles = static_cast<std::size_t>(ellipse.duration_s() / kH);
-  const auto period = static_cast<std::size_t>(p.period_s / kH);
+  const auto period = static_cast<std::size_t>(ellipse.period_s() / kH);
   double first_square = 0.0, last_square = 0.0;
   for (std::size_t k = 0; k < cycles; ++k) {
     const ContouringCycle out = diarc.step(k, ellipse.sample(static_cast<double>(k) * kH), plant.q);

@@ -9,9 +9,9 @@
 #include <numbers>
 
 #include "client/presets.hpp"
-#include "control/ellipse_trajectory.hpp"
 #include "control/task_space_diarc.hpp"
 #include "plant/plant_catalog.hpp"
+#include "tests/control/thesis_model_support.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/sim/contour_job_runner.hpp"
 
@@ -82,14 +82,7 @@ TEST(ThesisPresets, CaseBStartsFromRestThroughTheInitializationFilter) {
 // cogging the model lacks), Exp I for 10 s from rest, 0.5 um encoder.
 template <typename Controller>
 control::ParameterVector estimate_after_exp_i(Controller& controller) {
-  control::EllipseParameters p;
-  p.center = {0.0, 0.1};
-  p.semi_axis_x_m = 0.2;
-  p.semi_axis_y_m = 0.1;
-  p.period_s = 2.0 * std::numbers::pi / 4.0;
-  p.start_angle_rad = -std::numbers::pi / 2.0;
-  p.revolutions = 10.0 / p.period_s;
-  const control::EllipseTrajectory ellipse(p);
+  const control::EllipseTrajectory ellipse = control::thesis_support::exp_i_ellipse(10.0 * 4.0 / (2.0 * std::numbers::pi));
   auto stage = plant::make_plant_set("linmotor", 2);
   const double h = 2e-4;
   const auto encoder = [](double x) { return std::round(x / 0.5e-6) * 0.5e-6; };
@@ -103,11 +96,7 @@ control::ParameterVector estimate_after_exp_i(Controller& controller) {
 }
 
 TEST(ThesisPresets, DiarcEstimatesApproachTheStageWhereDarcsDoNot) {
-  control::EllipseParameters p;
-  p.center = {0.0, 0.1};
-  p.semi_axis_x_m = 0.2;
-  p.semi_axis_y_m = 0.1;
-  const auto frame = control::make_task_frame(control::EllipseTrajectory(p));
+  const auto frame = control::make_task_frame(control::thesis_support::exp_i_ellipse(1.0));
   control::TaskSpaceDiarc diarc(control::DiarcGains{}, 2e-4, frame);
   control::TaskSpaceDarc darc(control::DarcGains{}, 2e-4, frame);
   // Measured: DIARC 0.123 0.554 0.299 0.360 0.100 0.161 -0.003 0.001 (B2 still rising from 0.3);
