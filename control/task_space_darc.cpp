@@ -22,6 +22,22 @@ Eigen::Matrix<double, 2, 8> darc_regressor(const Eigen::Vector2d& equivalent_acc
   return phi;
 }
 
+void require_parameter_box(const ParameterVector& initial, const ParameterVector& lower,
+                           const ParameterVector& upper, const std::string& controller) {
+  for (int i = 0; i < 8; ++i) {
+    require_finite(lower[i], controller + " theta_min");
+    require_finite(upper[i], controller + " theta_max");
+    if (!(lower[i] <= initial[i] && initial[i] <= upper[i])) {
+      throw std::invalid_argument(controller + " theta_hat(0): element " + std::to_string(i + 1) +
+                                  " must lie within [theta_min, theta_max]");
+    }
+  }
+  // The model needs positive masses (M_t > 0, property P1).
+  if (!(lower[0] > 0.0 && lower[1] > 0.0)) {
+    throw std::invalid_argument(controller + " theta_min: the masses M1, M2 need positive lower bounds");
+  }
+}
+
 TaskSpaceDarc::TaskSpaceDarc(const DarcGains& gains, double sample_period_s,
                              std::shared_ptr<const TaskFrame> frame,
                              const InitializationFilterSettings& filter)
@@ -31,19 +47,8 @@ TaskSpaceDarc::TaskSpaceDarc(const DarcGains& gains, double sample_period_s,
       estimate_(gains.initial_estimate) {
   require_non_negative(gains.friction_slope, "darc friction slope");
   for (int i = 0; i < 2; ++i) require_non_negative(gains.feedback[i], "darc feedback");
-  for (int i = 0; i < 8; ++i) {
-    require_non_negative(gains.adaptation[i], "darc adaptation");
-    require_finite(gains.lower[i], "darc theta_min");
-    require_finite(gains.upper[i], "darc theta_max");
-    if (!(gains.lower[i] <= gains.initial_estimate[i] && gains.initial_estimate[i] <= gains.upper[i])) {
-      throw std::invalid_argument("darc theta_hat(0): element " + std::to_string(i + 1) +
-                                  " must lie within [theta_min, theta_max]");
-    }
-  }
-  // The model needs positive masses (M_t > 0, property P1).
-  if (!(gains.lower[0] > 0.0 && gains.lower[1] > 0.0)) {
-    throw std::invalid_argument("darc theta_min: the masses M1, M2 need positive lower bounds");
-  }
+  for (int i = 0; i < 8; ++i) require_non_negative(gains.adaptation[i], "darc adaptation");
+  require_parameter_box(gains.initial_estimate, gains.lower, gains.upper, "darc");
 }
 
 void TaskSpaceDarc::begin_iteration(const Eigen::Vector2d&, std::size_t) {

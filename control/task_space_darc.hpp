@@ -10,6 +10,7 @@
 // global or the local task frame and with the initialization filter (eq. 2-67) in the global one.
 
 #include <memory>
+#include <string>
 
 #include "control/contour_controller.hpp"
 #include "control/task_space_sliding_variable.hpp"
@@ -32,6 +33,11 @@ struct DarcGains {
 // The regressor Phi_c of the Cartesian form (digest 2.7 [D]).
 Eigen::Matrix<double, 2, 8> darc_regressor(const Eigen::Vector2d& equivalent_acceleration,
                                            const Eigen::Vector2d& velocity, double friction_slope);
+
+// Throws std::invalid_argument("CONTROLLER theta...") unless theta_min <= theta_hat(0) <= theta_max,
+// all finite, with positive lower bounds on the masses.
+void require_parameter_box(const ParameterVector& initial, const ParameterVector& lower,
+                           const ParameterVector& upper, const std::string& controller);
 
 class TaskSpaceDarc final : public ContourController {
  public:

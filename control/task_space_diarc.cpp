@@ -42,16 +42,8 @@ TaskSpaceDiarc::TaskSpaceDiarc(const DiarcGains& gains, double sample_period_s,
       filters->emplace_back(gains.filter_cutoff_hz[i], gains.filter_damping, sample_period_s);
     }
   }
-  for (int i = 0; i < 8; ++i) {
-    require_positive(gains.initial_covariance[i], "diarc initial covariance");
-    if (!(gains.lower[i] <= gains.initial_estimate[i] && gains.initial_estimate[i] <= gains.upper[i])) {
-      throw std::invalid_argument("diarc theta_hat(0): element " + std::to_string(i + 1) +
-                                  " must lie within [theta_min, theta_max]");
-    }
-  }
-  if (!(gains.lower[0] > 0.0 && gains.lower[1] > 0.0)) {
-    throw std::invalid_argument("diarc theta_min: the masses M1, M2 need positive lower bounds");
-  }
+  for (int i = 0; i < 8; ++i) require_positive(gains.initial_covariance[i], "diarc initial covariance");
+  require_parameter_box(gains.initial_estimate, gains.lower, gains.upper, "diarc");
   begin_iteration(Eigen::Vector2d::Zero(), 0);
 }
 
