@@ -10,6 +10,7 @@
 #include "control/circle_trajectory.hpp"
 #include "control/task_space_darc.hpp"
 #include "control/task_space_sarc.hpp"
+#include "control/task_space_sliding_variable.hpp"
 #include "control/trajectory_initialization_filter.hpp"
 
 namespace netmc::control {
@@ -105,6 +106,32 @@ TEST(TrajectoryInitializationFilter, ControllersStartWithZeroErrorWithRespectToT
   const double x = kWc * 2e-4;
   EXPECT_NEAR(filtered.step(1, circle.sample(2e-4), start).estimate.contour_error,
               0.01 * (1.0 - (1.0 + x) * std::exp(-x)), 1e-15);
+}
+
+TEST(TrajectoryInitializationFilter, TangentialErrorStaysContinuousWhenRmiFallsHalfARevolutionBehind) {
+  // Case B: z_m(0) = +R pi/2 (the stage's foot point is a quarter turn ahead along the motion),
+  // z_m'(0) = -0.6 m/s; z_m dips to about -0.176 m at t = 1.1 s, beyond half the perimeter
+  // (0.126 m). A stage exactly on r_i must read zero error throughout.
+  const CircleTrajectory circle = case_b();
+  const double radius = 0.04, h = 2e-4;
+  InitializationFilterSettings on;
+  on.enabled = true;
+  TaskSpaceSlidingVariable sliding({100.0, 30.0}, h, make_task_frame(circle), on);
+  TrajectoryInitializationFilter filter(kWc, kWm);
+  filter.start({0.01, radius * std::numbers::pi / 2.0}, {0.0, -0.6});
+  double deepest = 0.0;
+  for (std::size_t k = 0; k < 15000; ++k) {
+    const double t = static_cast<double>(k) * h;
+    const FilterOffset z = filter.offset(t);
+    deepest = std::min(deepest, z.value[1]);
+    // On r_i: radius R + z_c, and z_m of arc along the (clockwise) motion ahead of the desired point.
+    const double angle = -15.0 * t - z.value[1] / radius;
+    const Eigen::Vector2d q = Eigen::Vector2d(0.0, 0.05) + (radius + z.value[0]) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    const SlidingState state = sliding.update(k, circle.sample(t), q);
+    ASSERT_NEAR(state.error[0], 0.0, 1e-12) << t;
+    ASSERT_NEAR(state.error[1], 0.0, 1e-9) << t;
+  }
+  EXPECT_LT(deepest, -0.5 * 2.0 * std::numbers::pi * radius);  // it did cross half a revolution
 }
 
 TEST(TrajectoryInitializationFilter, NeedsTheGlobalTaskFrame) {
