@@ -295,6 +295,31 @@ void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains) {
   }
 }
 
+void parse_task_space_gains(std::string_view text, netmc::v1::TaskSpaceGains& gains) {
+  constexpr std::string_view flag = "--task-space";
+  const auto keys = parse_keys(text, flag, {"init_filter", "wc", "wm"});
+  for (const auto& [key, value] : keys) {
+    if (key == "init_filter") {
+      if (value != "on" && value != "off") fail(flag, "init_filter expects on or off, got '" + value + "'");
+      gains.set_initialization_filter(value == "on");
+      continue;
+    }
+    const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
+    if (!(number > 0.0)) fail(flag, key + " expects a positive bandwidth in rad/s, got '" + value + "'");
+    if (key == "wc") gains.set_filter_wc(number);
+    if (key == "wm") gains.set_filter_wm(number);
+  }
+}
+
+netmc::v1::Position parse_position(std::string_view text, std::string_view flag) {
+  const auto keys = parse_keys(text, flag, {"x", "y"});
+  if (!keys.contains("x") || !keys.contains("y")) fail(flag, "expected x=LENGTH,y=LENGTH");
+  netmc::v1::Position position;
+  position.set_x_m(parse_quantity(keys.at("x"), Quantity::length, std::string(flag) + " x"));
+  position.set_y_m(parse_quantity(keys.at("y"), Quantity::length, std::string(flag) + " y"));
+  return position;
+}
+
 void parse_pid_gains(std::string_view text, netmc::v1::PidGains& gains, std::string_view flag) {
   const auto keys = parse_keys(text, flag, {"kp", "ki", "kd"});
   for (const auto& [key, value] : keys) {

@@ -32,6 +32,10 @@ void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains,
 void parse_gtcf_adrc_gains(std::string_view text, netmc::v1::GtcfAdrcGains& gains);
 // --ilc kcp=..,kcd=..,forgetting=..,q=..(Hz),lead=..(samples)
 void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains);
+// --task-space init_filter=on|off,wc=..,wm=.. (rad/s)
+void parse_task_space_gains(std::string_view text, netmc::v1::TaskSpaceGains& gains);
+// --initial-position x=..,y=.. (lengths)
+netmc::v1::Position parse_position(std::string_view text, std::string_view flag);
 // --pidccc / --pid kp=..,ki=..,kd=..
 void parse_pid_gains(std::string_view text, netmc::v1::PidGains& gains, std::string_view flag);
 

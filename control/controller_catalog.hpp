@@ -12,6 +12,8 @@
 #include "control/pid_axis_controller.hpp"
 #include "control/pid_cross_coupling.hpp"
 #include "control/task_space_adrc.hpp"
+#include "control/task_space_darc.hpp"
+#include "control/task_space_diarc.hpp"
 #include "control/task_space_sarc.hpp"
 
 namespace netmc::control {
@@ -26,6 +28,10 @@ struct ControllerSettings {
   IterativeLearningGains ilccc;
   SarcGains sarc;
   GtcfAdrcGains gtcf_adrc;
+  DarcGains darc;
+  DiarcGains diarc;
+  // Thesis eq. 2-67, for the task-space controllers in the global frame (gtcf-*).
+  InitializationFilterSettings initialization_filter;
   std::string estimator = "curvature";
 };
 
@@ -37,8 +43,8 @@ ContouringController make_contouring_controller(std::string_view name,
                                                 double sample_period_s);
 
 // Every controller by name: AXIS[+COMPENSATOR] as above, or a task-space contouring controller
-// gtcf-sarc / ltcf-sarc (thesis ch. 2) or gtcf-adrc (task-space ADRC) on the contour of
-// `trajectory`.
+// gtcf-sarc / ltcf-sarc (thesis ch. 2), gtcf-darc / ltcf-darc / gtcf-diarc / ltcf-diarc
+// (thesis ch. 3) or gtcf-adrc (task-space ADRC) on the contour of `trajectory`.
 std::unique_ptr<ContourController> make_contour_controller(std::string_view name,
                                                            const ControllerSettings& settings,
                                                            double sample_period_s,

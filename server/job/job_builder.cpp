@@ -187,6 +187,10 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   if (i.has_q_cutoff_hz()) s.ilccc.q_cutoff_hz = i.q_cutoff_hz();
   if (i.has_lead_samples()) s.ilccc.lead_samples = i.lead_samples();
   if (!c.estimator().empty()) s.estimator = c.estimator();
+  const auto& t = c.task_space();
+  s.initialization_filter.enabled = t.initialization_filter();
+  if (t.has_filter_wc()) s.initialization_filter.contour_bandwidth = t.filter_wc();
+  if (t.has_filter_wm()) s.initialization_filter.tangential_bandwidth = t.filter_wm();
   return s;
 }
 
@@ -239,6 +243,9 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   job.evaluation_start_s = spec.evaluation_start_s();
   if (spec.command_limit() != 0.0) job.command_limit = spec.command_limit();
   if (spec.divergence_limit_m() != 0.0) job.divergence_limit_m = spec.divergence_limit_m();
+  if (spec.has_initial_position()) {
+    job.initial_position = Eigen::Vector2d(spec.initial_position().x_m(), spec.initial_position().y_m());
+  }
   job.validate();
   // Construct the controller once here so a bad name or gain is reported before anything runs.
   in_field("controller", [&] {

@@ -41,7 +41,7 @@ ContourServer::ContourServer(const ContourJob& job)
 
 Eigen::Vector2d ContourServer::begin_iteration(std::size_t iteration) {
   // Every iteration starts from the same initial state; nothing of the previous one is in flight.
-  const Eigen::Vector2d start = job_.trajectory->sample(0.0).position;
+  const Eigen::Vector2d start = job_.start_position();
   for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
     uplinks_[axis].reset(job_stream(job_.seed, StreamKind::uplink, axis, iteration));
   }

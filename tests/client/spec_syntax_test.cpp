@@ -116,5 +116,21 @@ TEST(SpecSyntax, GtcfAdrcBandwidths) {
   }
 }
 
+TEST(SpecSyntax, TaskSpaceAndInitialPosition) {
+  netmc::v1::TaskSpaceGains gains;
+  parse_task_space_gains("init_filter=on,wm=2", gains);
+  EXPECT_TRUE(gains.initialization_filter());
+  EXPECT_FALSE(gains.has_filter_wc());
+  EXPECT_EQ(gains.filter_wm(), 2.0);
+  EXPECT_NE(error_of([&] { parse_task_space_gains("init_filter=yes", gains); }).find("on or off"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_task_space_gains("wc=-8", gains); }).find("--task-space"), std::string::npos);
+  const auto position = parse_position("x=10mm,y=-0.02", "--initial-position");
+  EXPECT_DOUBLE_EQ(position.x_m(), 0.01);
+  EXPECT_DOUBLE_EQ(position.y_m(), -0.02);
+  EXPECT_NE(error_of([&] { parse_position("x=1mm", "--initial-position"); }).find("--initial-position"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace netmc::cli

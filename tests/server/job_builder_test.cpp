@@ -107,6 +107,28 @@ TEST(JobBuilder, PerAxisAdrcAndTaskSpaceAdrcGains) {
   EXPECT_NE(error_of(spec).find("gtcf-adrc loop bandwidth"), std::string::npos);
 }
 
+TEST(JobBuilder, TaskSpaceFilterAndInitialPosition) {
+  auto spec = parse_job_spec_json(R"({
+    "trajectory": {"circle": {"radius_m": 0.04, "center_y_m": 0.05, "period_s": 0.4, "clockwise": true}},
+    "plant": "linmotor",
+    "controller": {"name": "gtcf-darc", "task_space": {"initialization_filter": true, "filter_wm": 2}},
+    "initial_position": {"x_m": 0.0, "y_m": 0.0}
+  })", "test");
+  apply_defaults(spec);
+  const auto job = build_contour_job(spec);
+  EXPECT_TRUE(job.controller.initialization_filter.enabled);
+  EXPECT_EQ(job.controller.initialization_filter.contour_bandwidth, 8.0);  // unset: thesis
+  EXPECT_EQ(job.controller.initialization_filter.tangential_bandwidth, 2.0);
+  ASSERT_TRUE(job.initial_position.has_value());
+  EXPECT_EQ(job.start_position(), Eigen::Vector2d(0.0, 0.0));
+  // Unset, the axes start on the trajectory.
+  spec.clear_initial_position();
+  EXPECT_EQ(build_contour_job(spec).start_position(), Eigen::Vector2d(0.04, 0.05));
+  // The filter lives in the global task frame only.
+  spec.mutable_controller()->set_name("ltcf-sarc");
+  EXPECT_NE(error_of(spec).find("controller: initialization filter"), std::string::npos);
+}
+
 TEST(JobBuilder, JsonOutputUsesProtoFieldNames) {
   sim::IterationMetrics m;
   m.iteration = 2;
