@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "client/spec_syntax.hpp"
+#include "client/spec_validation.hpp"
 #include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
@@ -18,22 +19,13 @@ std::string read_file(const std::string& path) {
   return content.str();
 }
 
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
-
 }  // namespace
 
 StudyPlan plan_from_flags(const StudyFlags& f) {
   StudyPlan plan;
   if (!f.spec_file.empty()) {
     if (!f.preset.empty()) throw std::invalid_argument("--spec: cannot be combined with --preset");
-    auto spec = job::parse_job_spec_json(read_file(f.spec_file), f.spec_file);
+    auto spec = parse_job_spec_file_text(read_file(f.spec_file), f.spec_file);
     plan.title = "job spec " + f.spec_file;
     plan.jobs.push_back(spec);
   } else {
@@ -125,12 +117,19 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--clock", flags.clock,
                   "Distributed runs: lockstep (virtual time, equals sim) or realtime (wall clock)")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
-  app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty");
+  app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty, thesis-ellipse, thesis-circle");
   app->add_option("--spec", flags.spec_file, "Job spec as JSON (protobuf JSON mapping of netmc.v1.JobSpec)");
   app->add_option("--trajectory", flags.trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. | line:x0=..,y0=..,x1=..,y1=..,duration=..");
-  app->add_option("--plant", flags.plant, "seed001 | ballscrew | linmotor | stage004");
-  app->add_option("--controller", flags.controllers, "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc ...");
+  app->add_option("--controller", flags.controllers, "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc, gtcf-sarc, ltcf-sarc ...");
   app->add_option("--delay", flags.delay, "Loop delay on the controller->actuator link: none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=.. | pareto:scale=..,shape=.. | markov:good=A..B,bad=C..D,p_gb=..,p_bg=.. | trace:FILE.csv");
+  app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);
+  add_job_override_flags(app, flags);
+  app->add_option("--json", flags.json_path, "Write all iteration metrics as JSON");
+  app->add_flag("--curve", flags.curve, "Print e_sum per iteration (the learning curve)");
+}
+
+void add_job_override_flags(CLI::App* app, StudyFlags& flags) {
+  app->add_option("--plant", flags.plant, "seed001 | ballscrew | linmotor | stage004");
   app->add_option("--uplink-delay", flags.uplink_delay, "Sensor->controller delay (same forms as --delay)");
   app->add_option("--loss", flags.loss, "Setpoint loss: none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]");
   app->add_option("--uplink-loss", flags.uplink_loss, "Feedback loss (same forms as --loss)");
@@ -140,16 +139,13 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--compute-delay", flags.compute_delay, "Computation delay tau_cc in virtual time");
   app->add_option("--divergence-limit", flags.divergence_limit, "Contour error at which a run counts as unstable and stops (default 50mm)");
   app->add_option("--command-limit", flags.command_limit, "Command saturation |U| enforced at the axis (default: none)");
-  app->add_option("--iterations", flags.iterations, "ILC iterations per run")->check(CLI::Range(1, 100000));
-  app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);
+  app->add_option("--iterations", flags.iterations, "ILC iterations per run (1..100000)")->check(CLI::Range(1, 100000));
   app->add_option("--adrc", flags.adrc, "ADRC gains: r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent");
   app->add_option("--ilc", flags.ilc, "ILC gains: kcp=..,kcd=..,forgetting=..,q=HZ,lead=SAMPLES");
   app->add_option("--pidccc", flags.pidccc, "PID cross-coupling gains: kp=..,ki=..,kd=..");
   app->add_option("--pid", flags.pid, "Per-axis PID gains: kp=..,ki=..,kd=..");
   app->add_option("--estimator", flags.estimator, "Contour-error estimator of the controller: curvature | tangent");
   app->add_option("--sensor", flags.sensor, "Position sensor: resolution=0.5um,noise=0.1um");
-  app->add_option("--json", flags.json_path, "Write all iteration metrics as JSON");
-  app->add_flag("--curve", flags.curve, "Print e_sum per iteration (the learning curve)");
 }
 
 }  // namespace netmc::cli
