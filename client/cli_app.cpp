@@ -35,6 +35,17 @@ Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
   const auto run_run = add_run_command(app);
   const auto run_nodes = add_nodes_command(app);
   const auto run_cee = add_cee_command(app);
+  app.get_subcommand("run")->footer(R"(Examples (netmc-server and two netmc-axis nodes running, see README "Distributed runs"):
+  netmc run --server 127.0.0.1:7400                          # paper 001's study in lockstep
+  netmc run --server 127.0.0.1:7400 --controller adrc+ilccc --iterations 5 --json run.json
+  netmc run --server 127.0.0.1:7400 --clock realtime         # nodes started with --clock realtime
+
+Takes every flag and preset of netmc sim; --quiet prints only the final table.)");
+  app.get_subcommand("nodes")->footer(R"(Examples:
+  netmc nodes --server 127.0.0.1:7400     # node, axes, plant, clock, last seen, health)");
+  app.get_subcommand("cee")->footer(R"(Examples:
+  netmc cee                                # 2000 samples per contour, seed 1
+  netmc cee --points 20000 --max-lag-ms 5 --normal-sd-um 10)");
   for (CLI::App* subcommand : app.get_subcommands({})) add_verbosity_flags(subcommand);
   try {
     app.parse(argc, argv);

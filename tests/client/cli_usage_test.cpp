@@ -74,7 +74,7 @@ TEST(NetmcUsage, EveryBadValueOfANewFlagExitsWith2AndOneMessageNamingIt) {
 }
 
 TEST(NetmcUsage, HelpOfEverySubcommandHasExamples) {
-  for (const char* subcommand : {"sim", "sweep", "plot"}) {
+  for (const char* subcommand : {"sim", "sweep", "plot", "run", "nodes", "cee"}) {
     const Outcome result = netmc({subcommand, "--help"});
     EXPECT_EQ(result.exit_code, 0) << subcommand;
     EXPECT_NE(result.out.find("Examples:"), std::string::npos) << subcommand;
