@@ -35,7 +35,8 @@ Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
   const auto run_run = add_run_command(app);
   const auto run_nodes = add_nodes_command(app);
   const auto run_cee = add_cee_command(app);
-  app.get_subcommand("run")->footer(R"(Examples (netmc-server and two netmc-axis nodes running, see README "Distributed runs"):
+  app.get_subcommand("run")->footer(R"(Examples:
+  # with netmc-server and two netmc-axis nodes running (README "Distributed runs")
   netmc run --server 127.0.0.1:7400                          # paper 001's study in lockstep
   netmc run --server 127.0.0.1:7400 --controller adrc+ilccc --iterations 5 --json run.json
   netmc run --server 127.0.0.1:7400 --clock realtime         # nodes started with --clock realtime
