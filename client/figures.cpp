@@ -4,6 +4,7 @@
 #include <google/protobuf/util/json_util.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -60,6 +61,9 @@ constexpr const char* kStyle =
     "set border lc rgb '#444444'\n";
 
 int line_style(std::size_t index) { return static_cast<int>(index % 8) + 1; }
+// The colours of line styles 1..8 above, for labels and markers.
+constexpr std::array<const char*, 8> kColours{"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
+                                              "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
 
 struct TraceColumns {
   std::size_t time, x_ref, y_ref, x, y, error, tau;
@@ -347,16 +351,22 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
       }
       cell.push_back(sweep.number(r, column) * scale);
     }
-    std::string plot = "plot ";
+    std::vector<std::string> elements;
+    std::string markers;  // a cross at the top for each delay where every seed was unstable
     bool positive = true;
+    bool any_point = false;
     for (std::size_t s = 0; s < series_order.size(); ++s) {
       const auto& series = series_order[s];
       std::string dat = "# delay_max_ms mean min max stable_seeds\n";
+      bool has_point = false;
       for (const auto& [delay_ms, cell] : values[series]) {
         if (cell.empty()) {
           dat += fmt::format("{:.6f} NaN NaN NaN 0\n", delay_ms);
+          markers += fmt::format("set label at first {:.6f}, graph {:.3f} point pt 2 ps 1.6 lw 2 lc rgb '{}' front\n",
+                                 delay_ms, 0.965 - 0.025 * static_cast<double>(s % 4), kColours[s % 8]);
           continue;
         }
+        has_point = true;
         double sum = 0.0;
         for (const double v : cell) sum += v;
         const auto [lo, hi] = std::minmax_element(cell.begin(), cell.end());
@@ -364,17 +374,31 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
         dat += fmt::format("{:.6f} {:.9g} {:.9g} {:.9g} {}\n", delay_ms, sum / static_cast<double>(cell.size()),
                            *lo, *hi, cell.size());
       }
+      any_point = any_point || has_point;
       const std::string path = data_path(data_dir, fmt::format("sweep-{}-{}.dat", metric, s + 1));
       write_file_atomically(path, dat);
+      if (!has_point) {  // keep it in the legend, without a line
+        elements.push_back(fmt::format("NaN with linespoints ls {} title \"{} (unstable everywhere)\"",
+                                       line_style(s), plain(series)));
+        continue;
+      }
       const std::string title = plain(series) + (unstable[series] > 0
                                                      ? fmt::format(" ({} unstable)", unstable[series])
                                                      : std::string());
-      plot += fmt::format(
+      elements.push_back(fmt::format(
           "{p} using 1:3:4 with filledcurves ls {ls} fs transparent solid 0.18 noborder notitle, "
-          "{p} using 1:2 with linespoints ls {ls} title \"{t}\"{sep}",
-          fmt::arg("p", gnuplot_quote(path)), fmt::arg("ls", line_style(s)), fmt::arg("t", title),
-          fmt::arg("sep", s + 1 < series_order.size() ? ", " : ""));
+          "{p} using 1:2 with linespoints ls {ls} title \"{t}\"",
+          fmt::arg("p", gnuplot_quote(path)), fmt::arg("ls", line_style(s)), fmt::arg("t", title)));
     }
+    if (!any_point) {
+      throw std::invalid_argument("sweep CSV: no configuration has both a delay upper bound (delay_max_s) and a stable last iteration "
+                                  "to plot " + metric + " against (pareto without max and trace delays have no bound)");
+    }
+    if (!markers.empty()) {
+      elements.push_back("NaN with points pt 2 ps 1.6 lw 2 lc rgb '#444444' title 'x at the top: unstable in every seed'");
+    }
+    std::string plot = markers + "plot ";
+    for (std::size_t e = 0; e < elements.size(); ++e) plot += (e == 0 ? std::string() : std::string(", ")) + elements[e];
     Figure figure;
     figure.name = "sweep-" + metric;
     figure.width_px = 1150;
