@@ -102,6 +102,11 @@ Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
   const double half_um = std::max(1.6 * peak_error * 1e6, 10.0);
   std::string plot_full = "plot ";
   std::string plot_zoom = "plot ";
+  const auto run_title = [&](std::size_t i) {
+    const auto& iterations = outputs.study.runs(static_cast<int>(i)).iterations();
+    const bool unstable = !iterations.empty() && iterations[iterations.size() - 1].diverged();
+    return plain(outputs.traces[i].label) + (unstable ? " (unstable)" : "");
+  };
   for (std::size_t i = 0; i < outputs.traces.size(); ++i) {
     const auto& table = outputs.traces[i].table;
     const TraceColumns c(table);
@@ -115,9 +120,9 @@ Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
     const std::string path = data_path(data_dir, fmt::format("contour-{}.dat", i + 1));
     write_file_atomically(path, dat);
     plot_full += fmt::format("{} using 3:4 with lines ls {} title \"{}\", ", gnuplot_quote(path),
-                             line_style(i), plain(outputs.traces[i].label));
+                             line_style(i), run_title(i));
     plot_zoom += fmt::format("{} using 7:8 with lines ls {} title \"{}\", ", gnuplot_quote(path),
-                             line_style(i), plain(outputs.traces[i].label));
+                             line_style(i), run_title(i));
     if (i + 1 == outputs.traces.size()) {  // desired last, on top of the runs that hide it
       const std::string first_path = data_path(data_dir, "contour-1.dat");
       plot_full += gnuplot_quote(first_path) + " using 1:2 with lines lc rgb 'black' dt 2 lw 1.5 title 'desired'";
@@ -125,25 +130,36 @@ Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
     }
   }
   const double half_mm = half_um * 1e-3;
+  // The full view frames the desired contour (a run that diverged leaves the frame).
+  double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
+  for (std::size_t r = 0; r < first.rows(); ++r) {
+    x_lo = std::min(x_lo, first.number(r, c0.x_ref) * 1e3);
+    x_hi = std::max(x_hi, first.number(r, c0.x_ref) * 1e3);
+    y_lo = std::min(y_lo, first.number(r, c0.y_ref) * 1e3);
+    y_hi = std::max(y_hi, first.number(r, c0.y_ref) * 1e3);
+  }
+  const double margin = std::max(0.15 * std::max(x_hi - x_lo, y_hi - y_lo), 0.5);
   Figure figure;
   figure.name = "contour";
   figure.width_px = 1300;
   figure.height_px = 620;
   figure.body = std::string(kStyle) + fmt::format(
-      "set multiplot layout 1,2 title \"Desired vs actual contour (last iteration of each run)\" font ',13'\n"
+      "set multiplot layout 1,2 title \"Desired vs actual contour (last iteration of each run; legend on the right)\" font ',13'\n"
       "set size ratio -1\n"
-      "set offsets graph 0.08, graph 0.08, graph 0.08, graph 0.08\n"
+      "set xrange [{fx0:.6f}:{fx1:.6f}]\nset yrange [{fy0:.6f}:{fy1:.6f}]\n"
       "set xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
-      "set key top left box opaque samplen 3 font ',10'\n"
+      "unset key\n"
       "set object 1 rect from {x0:.6f},{y0:.6f} to {x1:.6f},{y1:.6f} fs empty border lc rgb '#e6550d' lw 2 front\n"
       "set label 1 'zoom' at {x1:.6f},{y1:.6f} offset 0.5,0.5 tc rgb '#e6550d' front\n"
       "{full}\n"
-      "unset object 1\nunset label 1\nset offsets 0,0,0,0\n"
+      "unset object 1\nunset label 1\nset autoscale\n"
       "set title \"Zoom ({w:.0f} {mu}m square) where {first}'s error peaks\" font ',12'\n"
       "set xrange [{mh:.4f}:{ph:.4f}]\nset yrange [{mh:.4f}:{ph:.4f}]\n"
       "set xlabel 'x - {cx:.3f} mm [{mu}m]'\nset ylabel 'y - {cy:.3f} mm [{mu}m]'\n"
       "set key bottom right box opaque samplen 3 font ',10'\n"
       "{zoom}\n",
+      fmt::arg("fx0", x_lo - margin), fmt::arg("fx1", x_hi + margin),
+      fmt::arg("fy0", y_lo - margin), fmt::arg("fy1", y_hi + margin),
       fmt::arg("x0", cx_mm - half_mm), fmt::arg("y0", cy_mm - half_mm), fmt::arg("x1", cx_mm + half_mm),
       fmt::arg("y1", cy_mm + half_mm), fmt::arg("full", plot_full), fmt::arg("zoom", plot_zoom),
       fmt::arg("w", 2 * half_um), fmt::arg("cx", cx_mm), fmt::arg("cy", cy_mm), fmt::arg("mh", -half_um),
@@ -221,15 +237,16 @@ Figure tau_figure(const SimOutputs& outputs, const std::string& data_dir) {
   if (taus_ms.empty()) taus_ms.push_back(0.0);
   std::sort(taus_ms.begin(), taus_ms.end());
   const double lo = taus_ms.front(), hi = taus_ms.back();
-  constexpr int kBins = 40;
-  const double width = hi > lo ? (hi - lo) / kBins : 0.01;
+  // One bin, centred on the value, when every setpoint saw the same delay.
+  const int kBins = hi > lo ? 40 : 1;
+  const double width = hi > lo ? (hi - lo) / kBins : std::max(0.02 * lo, 0.01);
   std::vector<int> counts(kBins, 0);
   for (const double tau : taus_ms) {  // the maximum belongs to the last bin
     counts[static_cast<std::size_t>(std::min<double>(kBins - 1, std::floor((tau - lo) / width)))]++;
   }
   std::string dat = "# tau_bin_centre_ms count\n";
   for (int b = 0; b < kBins; ++b) {
-    dat += fmt::format("{:.6f} {}\n", lo + (b + 0.5) * width, counts[static_cast<std::size_t>(b)]);
+    dat += fmt::format("{:.6f} {}\n", hi > lo ? lo + (b + 0.5) * width : lo, counts[static_cast<std::size_t>(b)]);
   }
   const std::string path = data_path(data_dir, "tau_histogram.dat");
   write_file_atomically(path, dat);
@@ -243,7 +260,7 @@ Figure tau_figure(const SimOutputs& outputs, const std::string& data_dir) {
       "set title \"Loop delay {tau} of the x axis: {run}, last iteration ({n} setpoints)\" font ',13'\n"
       "set xlabel '{tau} = setpoint arrival - sample time [ms]'\nset ylabel 'setpoints per bin'\n"
       "set style fill solid 0.55 border lc rgb '#1f4e79'\nset boxwidth {w:.6f} absolute\n"
-      "set yrange [0:*]\nset offsets graph 0.1, graph 0.1, graph 0.15, 0\n"
+      "set yrange [0:*]\nset offsets graph 0.1, graph 0.1, graph 0.15, 0\n{xrange}"
       "set key top left box opaque samplen 2 font ',10'\n"
       "set arrow 1 from {mean:.6f}, graph 0 to {mean:.6f}, graph 1 nohead lc rgb '#d62728' lw 2 dt 2\n"
       "set arrow 2 from {p99:.6f}, graph 0 to {p99:.6f}, graph 1 nohead lc rgb '#ff7f0e' lw 2 dt 3\n"
@@ -251,7 +268,8 @@ Figure tau_figure(const SimOutputs& outputs, const std::string& data_dir) {
       "NaN with lines lc rgb '#d62728' lw 2 dt 2 title 'mean {mean:.3f} ms', "
       "NaN with lines lc rgb '#ff7f0e' lw 2 dt 3 title 'p99 {p99:.3f} ms'\n",
       fmt::arg("tau", "\xCF\x84"), fmt::arg("run", plain(trace.label)), fmt::arg("n", taus_ms.size()),
-      fmt::arg("w", width), fmt::arg("mean", mean), fmt::arg("p99", p99), fmt::arg("path", gnuplot_quote(path)));
+      fmt::arg("w", width), fmt::arg("mean", mean),
+      fmt::arg("xrange", hi > lo ? std::string() : fmt::format("set xrange [{:.6f}:{:.6f}]\n", lo - 10 * width, lo + 10 * width)), fmt::arg("p99", p99), fmt::arg("path", gnuplot_quote(path)));
   return figure;
 }
 
