@@ -109,6 +109,21 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     }
     job::apply_defaults(job);
   }
+  if (!f.spec_file.empty()) {
+    // Names (plant, controller, observer ...) are checked when the job is built: do it now so
+    // the message names the file too.
+    const bool overridden = changes_setup || !f.controllers.empty() || !f.adrc.empty() ||
+                            !f.ilc.empty() || !f.pidccc.empty() || !f.pid.empty() ||
+                            !f.estimator.empty() || !f.deadline.empty() || !f.compute_delay.empty() ||
+                            !f.command_limit.empty() || !f.divergence_limit.empty() || !f.clock.empty();
+    for (const auto& job : plan.jobs) {
+      try {
+        job::build_contour_job(job);
+      } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument(f.spec_file + (overridden ? " (with the flags given): " : ": ") + error.what());
+      }
+    }
+  }
   return plan;
 }
 

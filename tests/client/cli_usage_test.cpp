@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "client/cli_app.hpp"
@@ -71,6 +72,29 @@ TEST(NetmcUsage, EveryBadValueOfANewFlagExitsWith2AndOneMessageNamingIt) {
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << arguments << "\n" << result.err;
     EXPECT_EQ(result.err.rfind("netmc: error: ", 0), 0u) << arguments << "\n" << result.err;
   }
+}
+
+TEST(NetmcUsage, SpecFileErrorsNameTheFileAndTheField) {
+  const auto spec = (std::filesystem::temp_directory_path() / "netmc_usage_spec.json").string();
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {R"({"controller": {"adrc": {"w0": -3}}})", spec + ": controller.adrc.w0: expected a positive number, got -3"},
+      {R"({"controller": {"name": "adrc+fuzzy"}})", spec + ": controller: unknown name 'adrc+fuzzy'"},
+      {R"({"plant": "steam"})", spec + ": plant: "},
+      {R"({"controller": {"adrc": {"observer": "rk4"}}})", spec + ": controller.adrc.observer: expected 'euler' or 'zoh'"},
+  };
+  for (const auto& [json, expected] : cases) {
+    {
+      std::ofstream file(spec);
+      // A complete job apart from the one mistake.
+      file << R"({"trajectory": {"line": {"x1_m": 0.01, "duration_s": 0.5}}, )" << json.substr(1);
+    }
+    for (const char* subcommand : {"sim", "sweep"}) {
+      const Outcome result = netmc({subcommand, "--spec", spec});
+      EXPECT_EQ(result.exit_code, 2) << subcommand << " " << json;
+      EXPECT_NE(result.err.find("netmc: error: " + expected), std::string::npos) << json << "\n" << result.err;
+    }
+  }
+  std::filesystem::remove(spec);
 }
 
 TEST(NetmcUsage, HelpOfEverySubcommandHasExamples) {
