@@ -373,6 +373,7 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
     std::string markers;  // a cross at the top for each delay where every seed was unstable
     bool positive = true;
     bool any_point = false;
+    double lowest = std::numeric_limits<double>::infinity(), highest = 0.0;
     for (std::size_t s = 0; s < series_order.size(); ++s) {
       const auto& series = series_order[s];
       std::string dat = "# delay_max_ms mean min max stable_seeds\n";
@@ -389,6 +390,8 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
         for (const double v : cell) sum += v;
         const auto [lo, hi] = std::minmax_element(cell.begin(), cell.end());
         positive = positive && *lo > 0.0;
+        lowest = std::min(lowest, *lo);
+        highest = std::max(highest, *hi);
         dat += fmt::format("{:.6f} {:.9g} {:.9g} {:.9g} {}\n", delay_ms, sum / static_cast<double>(cell.size()),
                            *lo, *hi, cell.size());
       }
@@ -426,9 +429,11 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
         "set title \"{label} of the last iteration vs loop-delay upper bound (mean over seeds, band: min-max)\" font ',12'\n"
         "set xlabel 'loop delay upper bound [ms]'\nset ylabel \"{label}\"\n"
         "{log}set key outside right top vertical box samplen 2 font ',10'\n"
-        "set datafile missing 'NaN'\n{plot}\n",
-        fmt::arg("label", label), fmt::arg("log", positive && metric.starts_with("e_") ? "set logscale y\nset format y '%g'\n" : ""),
-        fmt::arg("plot", plot));
+        "set datafile missing 'NaN'\n{room}{plot}\n",
+        fmt::arg("label", label), // Log scale only when the values span more than about a decade and a half: fewer decades
+        // would leave one or two labelled ticks.
+        fmt::arg("log", positive && metric.starts_with("e_") && highest > 30.0 * lowest ? "set logscale y\nset format y '%g'\n" : ""),
+        fmt::arg("room", markers.empty() ? "" : "set offsets 0, 0, graph 0.15, 0\n"), fmt::arg("plot", plot));
     figures.push_back(std::move(figure));
   }
   return figures;

@@ -89,14 +89,18 @@ std::string gnuplot_quote(const std::string& text) {
   return quoted + "'";
 }
 
-std::vector<std::string> render_figures(const std::vector<Figure>& figures,
-                                        const std::string& out_dir, FigureFormats formats,
-                                        std::chrono::milliseconds timeout) {
-  const auto gnuplot = find_gnuplot();
-  if (!gnuplot) {
+void require_gnuplot() {
+  if (!find_gnuplot()) {
     throw std::runtime_error("plot: gnuplot not found (install the Debian package gnuplot-nox, "
                              "or set NETMC_GNUPLOT to its path)");
   }
+}
+
+std::vector<std::string> render_figures(const std::vector<Figure>& figures,
+                                        const std::string& out_dir, FigureFormats formats,
+                                        std::chrono::milliseconds timeout) {
+  require_gnuplot();
+  const auto gnuplot = find_gnuplot();
   // Absolute paths, so the kept script redraws the figures from any directory.
   const std::filesystem::path out = std::filesystem::absolute(out_dir);
   const std::filesystem::path data = out / "data";

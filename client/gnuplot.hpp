@@ -26,6 +26,10 @@ struct FigureFormats {
 // The gnuplot executable: $NETMC_GNUPLOT if set, else `gnuplot` on PATH; nullopt if absent.
 std::optional<std::string> find_gnuplot();
 
+// Before a long run that ends in figures: throws std::runtime_error (as render_figures would)
+// when gnuplot is missing.
+void require_gnuplot();
+
 // A path quoted for a gnuplot script ('...' with ' doubled).
 std::string gnuplot_quote(const std::string& text);
 

@@ -58,6 +58,7 @@ every run. Output files are written whole, after every run has finished.)");
     const unsigned threads = flags->threads > 0 ? flags->threads
                                                 : std::max(1u, std::thread::hardware_concurrency());
     const FigureFormats formats = parse_figure_formats(flags->plot_format, "--plot-format");
+    if (!flags->plot_dir.empty()) require_gnuplot();
     const bool traces = !flags->csv_dir.empty() || !flags->plot_dir.empty();
     spdlog::info("sim: {} runs on {} threads", plan.jobs.size(), threads);
     const auto outcomes = run_study_in_process(plan, traces, threads);

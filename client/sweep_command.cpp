@@ -4,9 +4,11 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 #include <thread>
 
+#include "client/figures.hpp"
 #include "client/progress_bar.hpp"
 #include "client/server_commands.hpp"
 #include "client/study_report.hpp"
@@ -21,7 +23,7 @@ std::function<int()> add_sweep_command(CLI::App& app) {
   struct Flags {
     SweepAxes axes;
     std::string presets;
-    std::string csv_path, json_path, server;
+    std::string csv_path, json_path, server, plot_dir;
     unsigned threads = 0;
   };
   auto flags = std::make_shared<Flags>();
@@ -46,15 +48,17 @@ std::function<int()> add_sweep_command(CLI::App& app) {
       ->check(CLI::Range(1, 1024));
   sweep->add_option("--csv", flags->csv_path, "Write the tidy CSV: one row per configuration and iteration");
   sweep->add_option("--json", flags->json_path, "Write every configuration and its iterations as JSON");
+  sweep->add_option("--plot", flags->plot_dir,
+                    "Draw e_max and e_sum vs the delay bound into DIR (as netmc plot --sweep)");
   sweep->add_option("--server", flags->server,
                     "Run the configurations one after another on this netmc-server (HOST:PORT) "
                     "instead of in-process");
   sweep->footer(R"(Examples:
   # Paper 001's four controllers x 20 delay bounds (0.5..10 ms) x 5 seeds = 400 configurations
   netmc sweep --delay-max 0.5ms:10ms:20 --seeds 1..5 --iterations 10 --csv sweep.csv --json sweep.json
-  # Two controllers, three constant delays, plotted afterwards
+  # Two controllers, three constant delays, with the figures
   netmc sweep --controller adrc,adrc+ilccc --delay constant:1ms --delay constant:5ms \
-      --delay constant:10ms --csv sweep.csv && netmc plot --sweep sweep.csv --out figures
+      --delay constant:10ms --csv sweep.csv --plot figures
   # Two base studies with their own trajectories
   netmc sweep --preset seed001,seed001-ellipse --seeds 1..3 --csv sweep.csv
 
@@ -69,6 +73,7 @@ every configuration has finished. A run that becomes unstable stops at that iter
     }
     if (!flags->csv_path.empty()) check_output_path(flags->csv_path, "--csv");
     if (!flags->json_path.empty()) check_output_path(flags->json_path, "--json");
+    if (!flags->plot_dir.empty()) require_gnuplot();
     const auto grid = expand_sweep(flags->axes);
     StudyPlan plan;
     std::size_t total_iterations = 0;
@@ -103,7 +108,8 @@ every configuration has finished. A run that becomes unstable stops at that iter
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     // Render everything before writing anything.
-    const std::string csv = flags->csv_path.empty() ? std::string() : sweep_csv(grid, outcomes);
+    const bool need_csv = !flags->csv_path.empty() || !flags->plot_dir.empty();
+    const std::string csv = need_csv ? sweep_csv(grid, outcomes) : std::string();
     const std::string json = flags->json_path.empty() ? std::string() : sweep_json(grid, outcomes);
     if (!flags->csv_path.empty()) write_file_atomically(flags->csv_path, csv);
     if (!flags->json_path.empty()) write_file_atomically(flags->json_path, json);
@@ -115,6 +121,12 @@ every configuration has finished. A run that becomes unstable stops at that iter
                seconds, flags->server.empty() ? fmt::format("{} threads", threads) : "server " + flags->server);
     if (!flags->csv_path.empty()) fmt::print("wrote {}\n", flags->csv_path);
     if (!flags->json_path.empty()) fmt::print("wrote {}\n", flags->json_path);
+    if (!flags->plot_dir.empty()) {
+      const std::string data_dir = (std::filesystem::path(flags->plot_dir) / "data").string();
+      std::filesystem::create_directories(data_dir);
+      const auto figures = sweep_figures(CsvTable::parse(csv, "sweep"), {"e_max_m", "e_sum_m"}, data_dir);
+      for (const auto& file : render_figures(figures, flags->plot_dir, {})) fmt::print("wrote {}\n", file);
+    }
     return 0;
   };
 }
