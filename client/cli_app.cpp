@@ -16,7 +16,7 @@ namespace netmc::cli {
 
 int run_netmc(int argc, const char* const* argv) {
   verbosity() = {};
-  CLI::App app{"netmc: networked motion control - studies of contouring under network delay"};
+  CLI::App app{"netmc: networked motion control - studies of contouring under network delay", "netmc"};
   app.require_subcommand(0, 1);
   add_verbosity_flags(&app);
   app.footer(R"(Examples:

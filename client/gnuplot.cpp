@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <spdlog/spdlog.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -135,6 +136,10 @@ std::vector<std::string> render_figures(const std::vector<Figure>& figures,
     throw std::runtime_error("gnuplot failed (exit " + std::to_string(status) + ") on " +
                              script_path.string() + ": " + read_tail(log, 600));
   }
+  if (const std::string notes = read_tail(log, 2000); !notes.empty()) {
+    spdlog::info("gnuplot said: {}", notes);
+  }
+  spdlog::info("plot: {} figures drawn by {} ({})", figures.size(), *gnuplot, script_path.string());
   std::vector<std::string> written;
   for (const auto& [partial, target] : outputs) {
     if (!std::filesystem::exists(partial) || std::filesystem::file_size(partial) == 0) {

@@ -43,15 +43,19 @@ std::function<int()> add_plot_command(CLI::App& app) {
   CLI::App* plot = app.add_subcommand(
       "plot", "Draw figures (PNG, SVG; with gnuplot) from a sim run's outputs or a sweep's CSV");
   auto* sim = plot->add_option("--sim", flags->sim_dir,
-                               "A directory written by `netmc sim --plot DIR` (results.json, traces/)");
-  auto* sweep = plot->add_option("--sweep", flags->sweep_csv, "A CSV written by `netmc sweep --csv`");
+                               "A directory written by `netmc sim --plot DIR` (results.json, traces/)")
+                   ->type_name("DIR");
+  auto* sweep = plot->add_option("--sweep", flags->sweep_csv, "A CSV written by `netmc sweep --csv`")
+                     ->type_name("FILE.csv");
   sim->excludes(sweep);
   plot->add_option("--out", flags->out_dir, "Directory for the figures (default: the --sim directory, "
-                                            "or the sweep CSV's directory)");
+                                            "or the sweep CSV's directory)")
+      ->type_name("DIR");
   plot->add_option("--metric", flags->metrics,
                    "Sweep metrics to plot against the delay, comma-separated CSV columns "
-                   "(default e_max_m,e_sum_m)");
-  plot->add_option("--format", flags->format, "png, svg or png,svg (default)");
+                   "(default e_max_m,e_sum_m)")
+      ->type_name("COLUMN[,...]");
+  plot->add_option("--format", flags->format, "png, svg or png,svg (default)")->type_name("FORMATS");
   plot->footer(R"(Examples:
   netmc sim --plot figures                 # runs the study and draws its figures in one go
   netmc plot --sim figures --format svg    # redraws them from figures/results.json, figures/traces/

@@ -30,8 +30,10 @@ std::function<int()> add_sim_command(CLI::App& app) {
   add_study_flags(sim, flags->study);
   sim->add_option("--csv", flags->csv_dir, "Write per-cycle traces of each run's last iteration into DIR");
   sim->add_option("--plot", flags->plot_dir,
-                  "Write results.json, traces/ and the standard figures (PNG, SVG) into DIR");
-  sim->add_option("--plot-format", flags->plot_format, "Figure formats with --plot: png, svg or png,svg");
+                  "Write results.json, traces/ and the standard figures (PNG, SVG) into DIR")
+      ->type_name("DIR");
+  sim->add_option("--plot-format", flags->plot_format, "Figure formats with --plot: png, svg or png,svg")
+      ->type_name("FORMATS");
   sim->add_option("--threads", flags->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   sim->footer(R"(Examples:

@@ -29,30 +29,42 @@ std::function<int()> add_sweep_command(CLI::App& app) {
   auto flags = std::make_shared<Flags>();
   CLI::App* sweep = app.add_subcommand(
       "sweep", "Run a grid of studies (preset/trajectory x controller x delay x seed) on all cores");
-  sweep->add_option("--preset", flags->presets, "Base studies, comma-separated (default seed001)");
+  sweep->add_option("--preset", flags->presets, "Base studies, comma-separated (default seed001)")
+      ->type_name("NAME[,...]");
   sweep->add_option("--trajectory", flags->axes.trajectories,
-                    "Trajectory axis: give the flag once per value (forms as in sim)");
+                    "Trajectory axis: give the flag once per value (forms as in sim)")
+      ->type_name("SHAPE:...");
   sweep->add_option("--controller", flags->axes.controllers,
-                    "Controller axis, comma-separated (default: the runs of each preset)");
+                    "Controller axis, comma-separated (default: the runs of each preset)")
+      ->type_name("NAME[,...]");
   sweep->add_option("--delay-max", flags->axes.delay_max,
                     "Delay axis: upper bounds of a uniform loop delay, START:STOP:COUNT or a list "
-                    "(0.5ms:10ms:20, 1ms,2ms,5ms)");
+                    "(0.5ms:10ms:20, 1ms,2ms,5ms)")
+      ->type_name("RANGE|LIST");
   sweep->add_option("--delay-min", flags->axes.delay_min,
-                    "Lower bound of the uniform delay with --delay-max (default 0.3ms, paper 001)");
+                    "Lower bound of the uniform delay with --delay-max (default 0.3ms, paper 001)")
+      ->type_name("DURATION");
   sweep->add_option("--delay", flags->axes.delays,
-                    "Delay axis as whole delay specs: give the flag once per value (forms as in sim)");
-  sweep->add_option("--seeds", flags->axes.seeds, "Seed axis: FIRST..LAST or a list (default: the preset's seed)");
-  sweep->add_option("--spec", flags->axes.fixed.spec_file, "Base job spec as JSON instead of a preset");
+                    "Delay axis as whole delay specs: give the flag once per value (forms as in sim)")
+      ->type_name("KIND:...");
+  sweep->add_option("--seeds", flags->axes.seeds, "Seed axis: FIRST..LAST or a list (default: the preset's seed)")
+      ->type_name("FIRST..LAST|LIST");
+  sweep->add_option("--spec", flags->axes.fixed.spec_file, "Base job spec as JSON instead of a preset")
+      ->type_name("FILE.json");
   add_job_override_flags(sweep, flags->axes.fixed);
   sweep->add_option("--threads", flags->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
-  sweep->add_option("--csv", flags->csv_path, "Write the tidy CSV: one row per configuration and iteration");
-  sweep->add_option("--json", flags->json_path, "Write every configuration and its iterations as JSON");
+  sweep->add_option("--csv", flags->csv_path, "Write the tidy CSV: one row per configuration and iteration")
+      ->type_name("FILE");
+  sweep->add_option("--json", flags->json_path, "Write every configuration and its iterations as JSON")
+      ->type_name("FILE");
   sweep->add_option("--plot", flags->plot_dir,
-                    "Draw e_max and e_sum vs the delay bound into DIR (as netmc plot --sweep)");
+                    "Draw e_max and e_sum vs the delay bound into DIR (as netmc plot --sweep)")
+      ->type_name("DIR");
   sweep->add_option("--server", flags->server,
                     "Run the configurations one after another on this netmc-server (HOST:PORT) "
-                    "instead of in-process");
+                    "instead of in-process")
+      ->type_name("HOST:PORT");
   sweep->footer(R"(Examples:
   # Paper 001's four controllers x 20 delay bounds (0.5..10 ms) x 5 seeds = 400 configurations
   netmc sweep --delay-max 0.5ms:10ms:20 --seeds 1..5 --iterations 10 --csv sweep.csv --json sweep.json
