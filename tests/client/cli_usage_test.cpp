@@ -6,26 +6,14 @@
 #include <fstream>
 #include <sstream>
 
-#include "client/cli_app.hpp"
+#include "tests/client/netmc_in_process.hpp"
 
 namespace netmc::cli {
 namespace {
 
-struct Outcome {
-  int exit_code;
-  std::string err;
-  std::string out;
-};
+using Outcome = NetmcOutcome;
 
-Outcome netmc(const std::vector<std::string>& arguments) {
-  std::vector<const char*> argv{"netmc"};
-  for (const auto& argument : arguments) argv.push_back(argument.c_str());
-  testing::internal::CaptureStderr();
-  testing::internal::CaptureStdout();
-  const int code = run_netmc(static_cast<int>(argv.size()), argv.data());
-  const std::string out = testing::internal::GetCapturedStdout();
-  return {code, testing::internal::GetCapturedStderr(), out};
-}
+Outcome netmc(const std::vector<std::string>& arguments) { return run_netmc_captured(arguments); }
 
 std::vector<std::string> words(const std::string& text) {
   std::vector<std::string> out;

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "client/cli_app.hpp"
+#include "tests/client/netmc_in_process.hpp"
 #include "client/gnuplot.hpp"
 
 namespace netmc::cli {
@@ -20,14 +20,7 @@ fs::path scratch(const std::string& name) {
   return path;
 }
 
-int netmc(std::vector<std::string> arguments) {
-  std::vector<const char*> argv{"netmc"};
-  for (const auto& argument : arguments) argv.push_back(argument.c_str());
-  testing::internal::CaptureStdout();
-  const int code = run_netmc(static_cast<int>(argv.size()), argv.data());
-  testing::internal::GetCapturedStdout();
-  return code;
-}
+int netmc(const std::vector<std::string>& arguments) { return run_netmc_captured(arguments).exit_code; }
 
 std::string head(const fs::path& path, std::size_t bytes) {
   std::ifstream file(path, std::ios::binary);

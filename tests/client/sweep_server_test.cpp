@@ -10,7 +10,7 @@
 #include <sstream>
 #include <thread>
 
-#include "client/cli_app.hpp"
+#include "tests/client/netmc_in_process.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/management/management_server.hpp"
 #include "server/sim/contour_job_runner.hpp"
@@ -20,14 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int netmc(const std::vector<std::string>& arguments) {
-  std::vector<const char*> argv{"netmc"};
-  for (const auto& argument : arguments) argv.push_back(argument.c_str());
-  testing::internal::CaptureStdout();
-  const int code = run_netmc(static_cast<int>(argv.size()), argv.data());
-  testing::internal::GetCapturedStdout();
-  return code;
-}
+int netmc(const std::vector<std::string>& arguments) { return run_netmc_captured(arguments).exit_code; }
 
 std::string read(const fs::path& path) {
   std::ifstream file(path);
