@@ -6,13 +6,12 @@
 
 #include "client/study_flags.hpp"
 #include "client/study_report.hpp"
+#include "client/verbosity.hpp"
 #include "idl/management.pb.h"
 #include "server/management/management_client.hpp"
 
 namespace netmc::cli {
 namespace {
-
-constexpr auto kConnectTimeout = std::chrono::milliseconds(3000);
 
 // Waits for the response to `request_id`, skipping nothing: the server answers in order.
 netmc::v1::Response expect_response(management::ManagementClient& client,
@@ -25,9 +24,11 @@ netmc::v1::Response expect_response(management::ManagementClient& client,
   return *response;
 }
 
-// Runs one job on the server; prints each iteration as it arrives.
-RunOutcome run_job(management::ManagementClient& client, const netmc::v1::JobSpec& spec,
-                   std::uint64_t request_id, const std::string& server, bool quiet) {
+}  // namespace
+
+RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::v1::JobSpec& spec,
+                             std::uint64_t request_id, const std::string& server, bool quiet,
+                             const std::function<void()>& on_iteration) {
   netmc::v1::Request request;
   request.set_request_id(request_id);
   *request.mutable_submit()->mutable_spec() = spec;
@@ -42,6 +43,7 @@ RunOutcome run_job(management::ManagementClient& client, const netmc::v1::JobSpe
     // discovery time first.
     const auto response = expect_response(client, std::chrono::seconds(120), server);
     if (response.has_iteration()) {
+      if (on_iteration) on_iteration();
       const auto& m = response.iteration().metrics();
       if (!quiet) {
         std::cerr << fmt::format(
@@ -67,27 +69,24 @@ RunOutcome run_job(management::ManagementClient& client, const netmc::v1::JobSpe
   }
 }
 
-}  // namespace
-
 std::function<int()> add_run_command(CLI::App& app) {
   struct Flags {
     StudyFlags study;
     std::string server = "127.0.0.1:7400";
-    bool quiet = false;
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* run = app.add_subcommand(
       "run", "Run a study on a netmc-server and its axis nodes (same flags and presets as sim)");
   run->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT");
-  run->add_flag("--quiet", flags->quiet, "Print only the final table");
   add_study_flags(run, flags->study);
   return [flags]() -> int {
     const StudyPlan plan = plan_from_flags(flags->study);
-    management::ManagementClient client(flags->server, kConnectTimeout);
+    management::ManagementClient client(flags->server, kServerConnectTimeout);
     std::vector<RunOutcome> outcomes;
     std::uint64_t request_id = 1;
     for (const auto& spec : plan.jobs) {
-      outcomes.push_back(run_job(client, spec, request_id++, flags->server, flags->quiet));
+      outcomes.push_back(run_job_on_server(client, spec, request_id++, flags->server,
+                                           verbosity().quiet));
     }
     if (!flags->study.json_path.empty()) write_file_atomically(flags->study.json_path, study_json(outcomes));
     print_study_table(std::cout, plan, outcomes);
@@ -101,7 +100,7 @@ std::function<int()> add_nodes_command(CLI::App& app) {
   CLI::App* nodes = app.add_subcommand("nodes", "List the axis nodes a netmc-server has discovered");
   nodes->add_option("--server", *server, "netmc-server management endpoint HOST:PORT");
   return [server]() -> int {
-    management::ManagementClient client(*server, kConnectTimeout);
+    management::ManagementClient client(*server, kServerConnectTimeout);
     netmc::v1::Request request;
     request.set_request_id(1);
     request.mutable_nodes();

@@ -1,7 +1,15 @@
 #include "client/sim_command.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
 #include <iostream>
 #include <thread>
+
+#include "client/figures.hpp"
+#include "client/plot_command.hpp"
 
 #include "client/study_flags.hpp"
 #include "client/study_report.hpp"
@@ -13,13 +21,32 @@ std::function<int()> add_sim_command(CLI::App& app) {
   struct Flags {
     StudyFlags study;
     std::string csv_dir;
+    std::string plot_dir;
+    std::string plot_format = "png,svg";
     unsigned threads = 0;
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* sim = app.add_subcommand("sim", "Run a study in-process, in virtual time (default: --preset seed001)");
   add_study_flags(sim, flags->study);
   sim->add_option("--csv", flags->csv_dir, "Write per-cycle traces of each run's last iteration into DIR");
-  sim->add_option("--threads", flags->threads, "Worker threads (default: all cores)");
+  sim->add_option("--plot", flags->plot_dir,
+                  "Write results.json, traces/ and the standard figures (PNG, SVG) into DIR")
+      ->type_name("DIR");
+  sim->add_option("--plot-format", flags->plot_format, "Figure formats with --plot: png, svg or png,svg")
+      ->type_name("FORMATS");
+  sim->add_option("--threads", flags->threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  sim->footer(R"(Examples:
+  netmc sim                                        # paper 001's study (Table 1) and its table
+  netmc sim --plot figures                         # ... plus figures/contour.png, contour_error,
+                                                   #     e_sum, tau_histogram (.png and .svg)
+  netmc sim --iterations 100 --curve               # learning curves
+  netmc sim --controller adrc,adrc+pidccc --delay constant:4ms
+  netmc sim --preset thesis-ellipse
+  netmc sim --spec job.json --json results.json --csv traces/
+
+Values are SI unless suffixed (s, ms, us, m, mm, um). Flags override the preset or spec for
+every run. Output files are written whole, after every run has finished.)");
 
   return [flags]() -> int {
     const StudyPlan plan = plan_from_flags(flags->study);
@@ -32,13 +59,27 @@ std::function<int()> add_sim_command(CLI::App& app) {
     }
     const unsigned threads = flags->threads > 0 ? flags->threads
                                                 : std::max(1u, std::thread::hardware_concurrency());
-    const auto outcomes = run_study_in_process(plan, !flags->csv_dir.empty(), threads);
+    const FigureFormats formats = parse_figure_formats(flags->plot_format, "--plot-format");
+    if (!flags->plot_dir.empty()) require_gnuplot();
+    const bool traces = !flags->csv_dir.empty() || !flags->plot_dir.empty();
+    spdlog::info("sim: {} runs on {} threads", plan.jobs.size(), threads);
+    const auto outcomes = run_study_in_process(plan, traces, threads);
     // Outputs are rendered completely before any file is written.
-    const std::string json = flags->study.json_path.empty() ? std::string() : study_json(outcomes);
+    const std::string json = flags->study.json_path.empty() && flags->plot_dir.empty()
+                                 ? std::string()
+                                 : study_json(outcomes);
     if (!flags->study.json_path.empty()) write_file_atomically(flags->study.json_path, json);
     if (!flags->csv_dir.empty()) write_trace_directory(flags->csv_dir, outcomes);
     print_study_table(std::cout, plan, outcomes);
     if (flags->study.curve) print_learning_curve(std::cout, outcomes);
+    if (!flags->plot_dir.empty()) {
+      const std::filesystem::path dir(flags->plot_dir);
+      std::filesystem::create_directories(dir);
+      write_file_atomically((dir / kSimResultsFile).string(), json);
+      write_trace_directory((dir / kSimTracesDir).string(), outcomes);
+      const auto written = plot_sim_outputs(flags->plot_dir, flags->plot_dir, formats);
+      fmt::print("\nfigures: {}\n", fmt::join(written, " "));
+    }
     return 0;
   };
 }

@@ -77,6 +77,20 @@ void require_kind_argument(const KindSpec& spec, std::string_view field, const s
 
 }  // namespace
 
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item(trim(std::string_view(text).substr(
+        start, comma == std::string::npos ? std::string::npos : comma - start)));
+    if (!item.empty()) items.push_back(item);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return items;
+}
+
 double parse_quantity(std::string_view text, Quantity quantity, std::string_view field) {
   text = trim(text);
   double value = 0.0;

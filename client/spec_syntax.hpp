@@ -5,12 +5,16 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "idl/job.pb.h"
 
 namespace netmc::cli {
 
 enum class Quantity { length, time, plain };
+
+// "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
+std::vector<std::string> split_list(const std::string& text);
 
 // "10mm" -> 0.01 (length), "0.5ms" -> 5e-4 (time), "3" -> 3 (SI). `field` names the flag/key.
 double parse_quantity(std::string_view text, Quantity quantity, std::string_view field);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "client/spec_syntax.hpp"
+#include "client/spec_validation.hpp"
 #include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
@@ -18,22 +19,13 @@ std::string read_file(const std::string& path) {
   return content.str();
 }
 
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
-
 }  // namespace
 
 StudyPlan plan_from_flags(const StudyFlags& f) {
   StudyPlan plan;
   if (!f.spec_file.empty()) {
     if (!f.preset.empty()) throw std::invalid_argument("--spec: cannot be combined with --preset");
-    auto spec = job::parse_job_spec_json(read_file(f.spec_file), f.spec_file);
+    auto spec = parse_job_spec_file_text(read_file(f.spec_file), f.spec_file);
     plan.title = "job spec " + f.spec_file;
     plan.jobs.push_back(spec);
   } else {
@@ -129,6 +121,21 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     }
     job::apply_defaults(job);
   }
+  if (!f.spec_file.empty()) {
+    // Names (plant, controller, observer ...) are checked when the job is built: do it now so
+    // the message names the file too.
+    const bool overridden = changes_setup || !f.controllers.empty() || !f.adrc.empty() ||
+                            !f.ilc.empty() || !f.pidccc.empty() || !f.pid.empty() ||
+                            !f.estimator.empty() || !f.deadline.empty() || !f.compute_delay.empty() ||
+                            !f.command_limit.empty() || !f.divergence_limit.empty() || !f.clock.empty();
+    for (const auto& job : plan.jobs) {
+      try {
+        job::build_contour_job(job);
+      } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument(f.spec_file + (overridden ? " (with the flags given): " : ": ") + error.what());
+      }
+    }
+  }
   return plan;
 }
 
@@ -140,9 +147,16 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty, thesis-ellipse, thesis-circle, thesis-darc, thesis-ellipse-delay");
   app->add_option("--spec", flags.spec_file, "Job spec as JSON (protobuf JSON mapping of netmc.v1.JobSpec)");
   app->add_option("--trajectory", flags.trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. | line:x0=..,y0=..,x1=..,y1=..,duration=..");
-  app->add_option("--plant", flags.plant, "seed001 | ballscrew | linmotor | stage004");
   app->add_option("--controller", flags.controllers, "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc ...; task space: gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, gtcf-adrc");
   app->add_option("--delay", flags.delay, "Loop delay on the controller->actuator link: none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=.. | pareto:scale=..,shape=.. | markov:good=A..B,bad=C..D,p_gb=..,p_bg=.. | trace:FILE.csv");
+  app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);
+  add_job_override_flags(app, flags);
+  app->add_option("--json", flags.json_path, "Write all iteration metrics as JSON");
+  app->add_flag("--curve", flags.curve, "Print e_sum per iteration (the learning curve)");
+}
+
+void add_job_override_flags(CLI::App* app, StudyFlags& flags) {
+  app->add_option("--plant", flags.plant, "seed001 | ballscrew | linmotor | stage004");
   app->add_option("--uplink-delay", flags.uplink_delay, "Sensor->controller delay (same forms as --delay)");
   app->add_option("--loss", flags.loss, "Setpoint loss: none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]");
   app->add_option("--uplink-loss", flags.uplink_loss, "Feedback loss (same forms as --loss)");
@@ -152,8 +166,7 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--compute-delay", flags.compute_delay, "Computation delay tau_cc in virtual time");
   app->add_option("--divergence-limit", flags.divergence_limit, "Contour error at which a run counts as unstable and stops (default 50mm)");
   app->add_option("--command-limit", flags.command_limit, "Command saturation |U| enforced at the axis (default: none)");
-  app->add_option("--iterations", flags.iterations, "ILC iterations per run")->check(CLI::Range(1, 100000));
-  app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);
+  app->add_option("--iterations", flags.iterations, "ILC iterations per run (1..100000)")->check(CLI::Range(1, 100000));
   app->add_option("--adrc", flags.adrc, "ADRC gains: r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent");
   app->add_option("--adrc-y", flags.adrc_y, "The y axis's ADRC gains where they differ from --adrc (same keys)");
   app->add_option("--gtcf-adrc", flags.gtcf_adrc, "Task-space ADRC bandwidths [rad/s]: wc=..,wm=..,wo=..|woc=..,wom=..,observer=euler|zoh,delay=PERIODS (observer input delay)");
@@ -164,8 +177,6 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--task-space", flags.task_space, "Task-space controllers (gtcf-*): trajectory initialization filter, init_filter=on|off,wc=8,wm=1 (rad/s)");
   app->add_option("--initial-position", flags.initial_position, "Where the axes rest at t = 0, x=..,y=.. (default: the trajectory's start)");
   app->add_option("--sensor", flags.sensor, "Position sensor: resolution=0.5um,noise=0.1um");
-  app->add_option("--json", flags.json_path, "Write all iteration metrics as JSON");
-  app->add_flag("--curve", flags.curve, "Print e_sum per iteration (the learning curve)");
 }
 
 }  // namespace netmc::cli

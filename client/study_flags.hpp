@@ -25,6 +25,9 @@ struct StudyFlags {
 };
 
 void add_study_flags(CLI::App* app, StudyFlags& flags);
+// The flags that change every job of a study alike (plant, gains, period, iterations, links
+// other than the downlink delay ...): shared with `netmc sweep`, whose grid axes replace the rest.
+void add_job_override_flags(CLI::App* app, StudyFlags& flags);
 // Throws std::invalid_argument naming the flag or field.
 StudyPlan plan_from_flags(const StudyFlags& flags);
 

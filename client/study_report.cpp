@@ -8,6 +8,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <unistd.h>
+
 #include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
@@ -182,6 +184,20 @@ std::string trace_csv(const std::vector<sim::CycleTrace>& trace) {
                        row.coupling_command, row.tau_s);
   }
   return csv;
+}
+
+void check_output_path(const std::string& path, const std::string& flag) {
+  std::filesystem::path directory = std::filesystem::path(path).parent_path();
+  if (directory.empty()) directory = ".";
+  if (std::filesystem::is_directory(path)) {
+    throw std::invalid_argument(flag + ": '" + path + "' is a directory (expected a file name)");
+  }
+  if (!std::filesystem::is_directory(directory)) {
+    throw std::invalid_argument(flag + ": directory '" + directory.string() + "' does not exist");
+  }
+  if (access(directory.c_str(), W_OK) != 0) {
+    throw std::invalid_argument(flag + ": directory '" + directory.string() + "' is not writable");
+  }
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {

@@ -18,6 +18,9 @@ void print_learning_curve(std::ostream& out, const std::vector<RunOutcome>& outc
 std::string study_json(const std::vector<RunOutcome>& outcomes);
 std::string trace_csv(const std::vector<sim::CycleTrace>& trace);
 
+// Before a long run: throws std::invalid_argument("<flag>: ...") when `path` cannot be
+// created because its directory is missing or not writable.
+void check_output_path(const std::string& path, const std::string& flag);
 // Writes `content` to `path` atomically; throws std::runtime_error naming the path.
 void write_file_atomically(const std::string& path, const std::string& content);
 // One CSV per run: DIR/<index>-<controller>.csv; the directory is created if needed.

@@ -11,7 +11,8 @@
 namespace netmc::cli {
 
 std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_traces,
-                                             unsigned worker_threads) {
+                                             unsigned worker_threads,
+                                             const std::function<void()>& on_iteration) {
   std::vector<sim::ContourJob> jobs;
   for (std::size_t i = 0; i < plan.jobs.size(); ++i) {
     sim::ContourJob job = job::build_contour_job(plan.jobs[i]);
@@ -32,6 +33,7 @@ std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_
         runner.run_all([&](const sim::IterationRecord& record) {
           *out.result.add_iterations() = job::to_proto(record.metrics);
           if (record_traces) out.last_trace = record.trace;
+          if (on_iteration) on_iteration();
         });
       } catch (...) {
         errors[i] = std::current_exception();

@@ -15,7 +15,11 @@ struct RunOutcome {
 };
 
 // Builds every job first, so a bad spec fails before anything runs (std::invalid_argument).
+// Jobs are taken by the workers in order and each result lands at its job's index, so the
+// outcome does not depend on the thread count. `on_iteration` (optional) is called from the
+// worker threads after each iteration; it must be thread-safe.
 std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_traces,
-                                             unsigned worker_threads);
+                                             unsigned worker_threads,
+                                             const std::function<void()>& on_iteration = {});
 
 }  // namespace netmc::cli

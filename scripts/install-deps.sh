@@ -14,4 +14,5 @@ apt-get install -y --no-install-recommends \
   libfastrtps-dev libfastcdr-dev fastddsgen \
   libboost-dev libboost-system-dev \
   libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev \
+  gnuplot-nox \
   libgtest-dev libgmock-dev libbenchmark-dev

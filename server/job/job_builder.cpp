@@ -126,7 +126,9 @@ auto in_field(const std::string& field, Build&& build) {
   try {
     return build();
   } catch (const std::invalid_argument& error) {
-    throw std::invalid_argument(field + ": " + error.what());
+    const std::string message = error.what();
+    if (message.rfind(field + ":", 0) == 0 || message.rfind(field + ".", 0) == 0) throw;  // named already
+    throw std::invalid_argument(field + ": " + message);
   }
 }
 

@@ -1,0 +1,83 @@
+#include "client/cli_app.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <stdexcept>
+
+#include "client/cee_command.hpp"
+#include "client/plot_command.hpp"
+#include "client/server_commands.hpp"
+#include "client/sim_command.hpp"
+#include "client/sweep_command.hpp"
+#include "client/verbosity.hpp"
+
+namespace netmc::cli {
+
+int run_netmc(int argc, const char* const* argv) {
+  verbosity() = {};
+  CLI::App app{"netmc: networked motion control - studies of contouring under network delay", "netmc"};
+  app.require_subcommand(0, 1);
+  add_verbosity_flags(&app);
+  app.footer(R"(Examples:
+  netmc sim                                    # paper 001's study: four controllers, the table
+  netmc sim --plot figures                     # ... and its figures (PNG and SVG) in figures/
+  netmc sim --delay constant:4ms --controller adrc,adrc+pidccc
+  netmc sweep --delay-max 0.5ms:10ms:20 --seeds 1..5 --iterations 10 --csv sweep.csv
+  netmc plot --sweep sweep.csv --out figures
+  netmc run --server 127.0.0.1:7400            # the same study on netmc-server + axis nodes
+  netmc SUBCOMMAND --help                      # flags and examples of each subcommand
+
+Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
+  const auto run_sim = add_sim_command(app);
+  const auto run_sweep = add_sweep_command(app);
+  const auto run_plot = add_plot_command(app);
+  const auto run_run = add_run_command(app);
+  const auto run_nodes = add_nodes_command(app);
+  const auto run_cee = add_cee_command(app);
+  app.get_subcommand("run")->footer(R"(Examples:
+  # with netmc-server and two netmc-axis nodes running (README "Distributed runs")
+  netmc run --server 127.0.0.1:7400                          # paper 001's study in lockstep
+  netmc run --server 127.0.0.1:7400 --controller adrc+ilccc --iterations 5 --json run.json
+  netmc run --server 127.0.0.1:7400 --clock realtime         # nodes started with --clock realtime
+
+Takes every flag and preset of netmc sim; --quiet prints only the final table.)");
+  app.get_subcommand("nodes")->footer(R"(Examples:
+  netmc nodes --server 127.0.0.1:7400     # node, axes, plant, clock, last seen, health)");
+  app.get_subcommand("cee")->footer(R"(Examples:
+  netmc cee                                # 2000 samples per contour, seed 1
+  netmc cee --points 20000 --max-lag-ms 5 --normal-sd-um 10)");
+  for (CLI::App* subcommand : app.get_subcommands({})) add_verbosity_flags(subcommand);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's message names the flag; one line, with where to look.
+    const auto parsed = app.get_subcommands();
+    const std::string help = parsed.empty() ? "netmc --help" : "netmc " + parsed.front()->get_name() + " --help";
+    std::cerr << "netmc: error: " << e.what() << " (see " << help << ")\n";
+    return 2;
+  }
+  try {
+    configure_logging();
+    if (app.got_subcommand("sim")) return run_sim();
+    if (app.got_subcommand("sweep")) return run_sweep();
+    if (app.got_subcommand("plot")) return run_plot();
+    if (app.got_subcommand("run")) return run_run();
+    if (app.got_subcommand("nodes")) return run_nodes();
+    if (app.got_subcommand("cee")) return run_cee();
+    std::cout << app.help();
+    return 0;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "netmc: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "netmc: error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace netmc::cli

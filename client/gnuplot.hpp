@@ -1,0 +1,42 @@
+#pragma once
+// Renders figures with gnuplot (Debian package gnuplot-nox): netmc writes the data files and
+// a script, and runs `gnuplot SCRIPT` as a subprocess with a timeout. Each figure is written
+// as PNG (pngcairo) and/or SVG, first under a temporary name and renamed when gnuplot has
+// finished, so a failure leaves no half-drawn figure.
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace netmc::cli {
+
+struct Figure {
+  std::string name;        // file stem: <name>.png / <name>.svg
+  int width_px = 1000;
+  int height_px = 650;
+  std::string body;        // gnuplot commands after `set terminal` / `set output`
+};
+
+struct FigureFormats {
+  bool png = true;
+  bool svg = true;
+};
+
+// The gnuplot executable: $NETMC_GNUPLOT if set, else `gnuplot` on PATH; nullopt if absent.
+std::optional<std::string> find_gnuplot();
+
+// Before a long run that ends in figures: throws std::runtime_error (as render_figures would)
+// when gnuplot is missing.
+void require_gnuplot();
+
+// A path quoted for a gnuplot script ('...' with ' doubled).
+std::string gnuplot_quote(const std::string& text);
+
+// Writes DIR/data/figures.gp and runs it; returns the files written. Throws
+// std::runtime_error when gnuplot is missing, fails (its message) or exceeds `timeout`.
+std::vector<std::string> render_figures(const std::vector<Figure>& figures,
+                                        const std::string& out_dir, FigureFormats formats,
+                                        std::chrono::milliseconds timeout = std::chrono::seconds(60));
+
+}  // namespace netmc::cli
