@@ -311,17 +311,23 @@ void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains) {
 
 void parse_task_space_gains(std::string_view text, netmc::v1::TaskSpaceGains& gains) {
   constexpr std::string_view flag = "--task-space";
-  const auto keys = parse_keys(text, flag, {"init_filter", "wc", "wm"});
+  const auto keys =
+      parse_keys(text, flag, {"init_filter", "wc", "wm", "lambda_c", "lambda_m", "k_c", "k_m", "ltcf_rotation"});
   for (const auto& [key, value] : keys) {
-    if (key == "init_filter") {
-      if (value != "on" && value != "off") fail(flag, "init_filter expects on or off, got '" + value + "'");
-      gains.set_initialization_filter(value == "on");
+    if (key == "init_filter" || key == "ltcf_rotation") {
+      if (value != "on" && value != "off") fail(flag, key + " expects on or off, got '" + value + "'");
+      if (key == "init_filter") gains.set_initialization_filter(value == "on");
+      if (key == "ltcf_rotation") gains.set_ltcf_rotation(value == "on");
       continue;
     }
     const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
-    if (!(number > 0.0)) fail(flag, key + " expects a positive bandwidth in rad/s, got '" + value + "'");
+    if (!(number > 0.0)) fail(flag, key + " expects a positive number, got '" + value + "'");
     if (key == "wc") gains.set_filter_wc(number);
     if (key == "wm") gains.set_filter_wm(number);
+    if (key == "lambda_c") gains.set_lambda_c(number);
+    if (key == "lambda_m") gains.set_lambda_m(number);
+    if (key == "k_c") gains.set_k_c(number);
+    if (key == "k_m") gains.set_k_m(number);
   }
 }
 

@@ -64,15 +64,15 @@ std::unique_ptr<ContourController> make_contour_controller(std::string_view name
   if (name == "gtcf-adrc") {
     return std::make_unique<TaskSpaceAdrc>(settings.gtcf_adrc, sample_period_s, make_task_frame(trajectory));
   }
-  if (name == "ltcf-sarc") return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, nullptr, filter);
+  if (name == "ltcf-sarc") return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, nullptr, filter, settings.local_frame_rate);
   if (name == "gtcf-darc") {
     return std::make_unique<TaskSpaceDarc>(settings.darc, sample_period_s, make_task_frame(trajectory), filter);
   }
-  if (name == "ltcf-darc") return std::make_unique<TaskSpaceDarc>(settings.darc, sample_period_s, nullptr, filter);
+  if (name == "ltcf-darc") return std::make_unique<TaskSpaceDarc>(settings.darc, sample_period_s, nullptr, filter, settings.local_frame_rate);
   if (name == "gtcf-diarc") {
     return std::make_unique<TaskSpaceDiarc>(settings.diarc, sample_period_s, make_task_frame(trajectory), filter);
   }
-  if (name == "ltcf-diarc") return std::make_unique<TaskSpaceDiarc>(settings.diarc, sample_period_s, nullptr, filter);
+  if (name == "ltcf-diarc") return std::make_unique<TaskSpaceDiarc>(settings.diarc, sample_period_s, nullptr, filter, settings.local_frame_rate);
   return std::make_unique<ContouringController>(make_contouring_controller(name, settings, sample_period_s));
 }
 

@@ -32,6 +32,8 @@ struct ControllerSettings {
   DiarcGains diarc;
   // Thesis eq. 2-67, for the task-space controllers in the global frame (gtcf-*).
   InitializationFilterSettings initialization_filter;
+  // How the local-frame controllers (ltcf-*) differentiate their error.
+  LocalFrameRate local_frame_rate = LocalFrameRate::frozen;
   std::string estimator = "curvature";
 };
 

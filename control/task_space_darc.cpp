@@ -40,10 +40,10 @@ void require_parameter_box(const ParameterVector& initial, const ParameterVector
 
 TaskSpaceDarc::TaskSpaceDarc(const DarcGains& gains, double sample_period_s,
                              std::shared_ptr<const TaskFrame> frame,
-                             const InitializationFilterSettings& filter)
+                             const InitializationFilterSettings& filter, LocalFrameRate local_rate)
     : gains_(gains),
       h_(require_positive(sample_period_s, "sample period")),
-      sliding_(gains.lambda, sample_period_s, std::move(frame), filter),
+      sliding_(gains.lambda, sample_period_s, std::move(frame), filter, local_rate),
       estimate_(gains.initial_estimate) {
   require_non_negative(gains.friction_slope, "darc friction slope");
   for (int i = 0; i < 2; ++i) require_non_negative(gains.feedback[i], "darc feedback");

@@ -44,7 +44,8 @@ class TaskSpaceDarc final : public ContourController {
   // Global frame: `frame` of the contour. Local frame: frame == nullptr. Throws
   // std::invalid_argument naming the gain when one is invalid (theta_hat(0) outside the box).
   TaskSpaceDarc(const DarcGains& gains, double sample_period_s, std::shared_ptr<const TaskFrame> frame,
-                const InitializationFilterSettings& filter = {});
+                const InitializationFilterSettings& filter = {},
+                LocalFrameRate local_rate = LocalFrameRate::frozen);
 
   void begin_iteration(const Eigen::Vector2d& initial_position, std::size_t samples) override;
   ContouringCycle step(std::size_t cycle, const ReferencePoint& reference,

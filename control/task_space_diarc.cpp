@@ -27,10 +27,10 @@ void SecondOrderLowPass::step(double input) {
 
 TaskSpaceDiarc::TaskSpaceDiarc(const DiarcGains& gains, double sample_period_s,
                                std::shared_ptr<const TaskFrame> frame,
-                               const InitializationFilterSettings& filter)
+                               const InitializationFilterSettings& filter, LocalFrameRate local_rate)
     : gains_(gains),
       h_(require_positive(sample_period_s, "sample period")),
-      sliding_(gains.lambda, sample_period_s, std::move(frame), filter) {
+      sliding_(gains.lambda, sample_period_s, std::move(frame), filter, local_rate) {
   require_non_negative(gains.forgetting, "diarc forgetting");
   require_non_negative(gains.normalization, "diarc normalization");
   require_positive(gains.covariance_limit, "diarc covariance limit");

@@ -11,9 +11,9 @@ namespace netmc::control {
 
 TaskSpaceSarc::TaskSpaceSarc(const SarcGains& gains, double sample_period_s,
                              std::shared_ptr<const TaskFrame> frame,
-                             const InitializationFilterSettings& filter)
+                             const InitializationFilterSettings& filter, LocalFrameRate local_rate)
     : gains_(gains), h_(require_positive(sample_period_s, "sample period")),
-      sliding_(gains.lambda, sample_period_s, std::move(frame), filter) {
+      sliding_(gains.lambda, sample_period_s, std::move(frame), filter, local_rate) {
   for (int i = 0; i < 2; ++i) {
     require_positive(gains.mass[i], "sarc mass");
     require_non_negative(gains.damping[i], "sarc damping");

@@ -27,7 +27,8 @@ class TaskSpaceSarc final : public ContourController {
   // Global frame: `frame` of the contour. Local frame: frame == nullptr. The initialization
   // filter (eq. 2-67) needs the global frame.
   TaskSpaceSarc(const SarcGains& gains, double sample_period_s, std::shared_ptr<const TaskFrame> frame,
-                const InitializationFilterSettings& filter = {});
+                const InitializationFilterSettings& filter = {},
+                LocalFrameRate local_rate = LocalFrameRate::frozen);
 
   void begin_iteration(const Eigen::Vector2d& initial_position, std::size_t samples) override;
   ContouringCycle step(std::size_t cycle, const ReferencePoint& reference,

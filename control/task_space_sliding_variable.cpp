@@ -11,10 +11,12 @@ namespace netmc::control {
 TaskSpaceSlidingVariable::TaskSpaceSlidingVariable(const Eigen::Vector2d& lambda,
                                                    double sample_period_s,
                                                    std::shared_ptr<const TaskFrame> frame,
-                                                   const InitializationFilterSettings& filter)
+                                                   const InitializationFilterSettings& filter,
+                                                   LocalFrameRate local_rate)
     : lambda_(lambda),
       h_(require_positive(sample_period_s, "sample period")),
       frame_(std::move(frame)),
+      local_rate_(local_rate),
       filter_settings_(filter) {
   for (int i = 0; i < 2; ++i) require_positive(lambda[i], "task-space lambda");
   if (filter.enabled) {
@@ -68,6 +70,17 @@ SlidingState TaskSpaceSlidingVariable::update(std::size_t cycle, const Reference
     out.jacobian << -std::sin(alpha), std::cos(alpha), std::cos(alpha), std::sin(alpha);
     out.error = out.jacobian * (q - reference.position);
     desired_rate = out.jacobian * reference.velocity;
+    if (local_rate_ == LocalFrameRate::rotating && speed > 0.0) {
+      // T' = alpha' dT/dalpha with alpha' = (v x a) / |v|^2 of the desired motion; moving T' e
+      // into the desired rate makes s = e' + Lambda e and q_eq' = q_d' - T (T' + Lambda T) e
+      // (digest 2.4 [A]). At the ellipse's vertices alpha' reaches 70 rad/s.
+      const Eigen::Vector2d& v = reference.velocity;
+      const Eigen::Vector2d& a = reference.acceleration;
+      const double alpha_rate = (v.x() * a.y() - v.y() * a.x()) / (speed * speed);
+      Eigen::Matrix2d turning;  // dT/dalpha
+      turning << -std::cos(alpha), -std::sin(alpha), -std::sin(alpha), std::cos(alpha);
+      desired_rate -= alpha_rate * turning * (q - reference.position);
+    }
   }
   out.inverse = out.jacobian.inverse();
   const Eigen::Vector2d lambda_error = lambda_.cwiseProduct(out.error);
@@ -84,6 +97,7 @@ SlidingState TaskSpaceSlidingVariable::update(std::size_t cycle, const Reference
 
 std::string TaskSpaceSlidingVariable::filter_description() const {
   std::ostringstream text;
+  if (!frame_ && local_rate_ == LocalFrameRate::rotating) text << ", rotating frame";
   if (filter_) {
     text << ", init filter wc=" << filter_settings_.contour_bandwidth
          << " wm=" << filter_settings_.tangential_bandwidth;

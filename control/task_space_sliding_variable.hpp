@@ -23,6 +23,12 @@
 
 namespace netmc::control {
 
+// How the local task frame's error is differentiated (LTCF only; the GTCF ignores it).
+enum class LocalFrameRate {
+  frozen,    // e' = T (q' - q_d'): T(alpha) held over the sample, as eq. 2-63 reads
+  rotating,  // e' = T (q' - q_d') + T' (q - q_d): the frame turns with the desired tangent
+};
+
 struct SlidingState {
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();                 // q' (differenced)
   Eigen::Vector2d error = Eigen::Vector2d::Zero();                    // e, [contour, tangential]
@@ -38,7 +44,8 @@ class TaskSpaceSlidingVariable {
   // filter there). Throws std::invalid_argument naming the setting when one is invalid.
   TaskSpaceSlidingVariable(const Eigen::Vector2d& lambda, double sample_period_s,
                            std::shared_ptr<const TaskFrame> frame,
-                           const InitializationFilterSettings& filter);
+                           const InitializationFilterSettings& filter,
+                           LocalFrameRate local_rate = LocalFrameRate::frozen);
 
   void reset();
   // Once per cycle, in order: the reference and the measured position of cycle k.
@@ -53,6 +60,7 @@ class TaskSpaceSlidingVariable {
   Eigen::Vector2d lambda_;
   double h_;
   std::shared_ptr<const TaskFrame> frame_;
+  LocalFrameRate local_rate_;
   std::optional<TrajectoryInitializationFilter> filter_;
   InitializationFilterSettings filter_settings_;
   std::size_t first_cycle_ = 0;

@@ -193,6 +193,23 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   s.initialization_filter.enabled = t.initialization_filter();
   if (t.has_filter_wc()) s.initialization_filter.contour_bandwidth = t.filter_wc();
   if (t.has_filter_wm()) s.initialization_filter.tangential_bandwidth = t.filter_wm();
+  const auto positive = [](bool has, double value, const char* field) {
+    if (has && !(value > 0.0)) {
+      throw std::invalid_argument(std::string("controller.task_space.") + field +
+                                  ": expected a positive number");
+    }
+    return has;
+  };
+  // One Lambda and K for every task-space controller that has them (SARC, DARC, DIARC).
+  if (positive(t.has_lambda_c(), t.lambda_c(), "lambda_c")) {
+    s.sarc.lambda[0] = s.darc.lambda[0] = s.diarc.lambda[0] = t.lambda_c();
+  }
+  if (positive(t.has_lambda_m(), t.lambda_m(), "lambda_m")) {
+    s.sarc.lambda[1] = s.darc.lambda[1] = s.diarc.lambda[1] = t.lambda_m();
+  }
+  if (positive(t.has_k_c(), t.k_c(), "k_c")) s.sarc.feedback[0] = s.darc.feedback[0] = s.diarc.feedback[0] = t.k_c();
+  if (positive(t.has_k_m(), t.k_m(), "k_m")) s.sarc.feedback[1] = s.darc.feedback[1] = s.diarc.feedback[1] = t.k_m();
+  if (t.ltcf_rotation()) s.local_frame_rate = control::LocalFrameRate::rotating;
   return s;
 }
 
