@@ -58,33 +58,65 @@ FootPoint steffensen_foot_point(const ReferenceTrajectory& curve, const Eigen::V
   return finish(curve, point, t, i);
 }
 
-FootPoint exact_foot_point(const ReferenceTrajectory& curve, const Eigen::Vector2d& point) {
-  const double duration = curve.duration_s();
-  const int samples = 4000;
-  const auto distance = [&](double t) { return (curve.sample(t).position - point).norm(); };
-  double best_t = 0.0, best = distance(0.0);
-  for (int i = 1; i <= samples; ++i) {
-    const double t = duration * i / samples;
-    const double d = distance(t);
-    if (d < best) {
-      best = d;
-      best_t = t;
+SampledContour sample_contour(const CurvePosition& position, double span, int samples) {
+  SampledContour grid;
+  grid.span = span;
+  grid.positions.reserve(static_cast<std::size_t>(samples) + 1);
+  for (int i = 0; i <= samples; ++i) grid.positions.push_back(position(span * i / samples));
+  return grid;
+}
+
+SampledContour sample_contour(const ReferenceTrajectory& curve) {
+  return sample_contour([&](double t) { return curve.sample(t).position; }, curve.duration_s());
+}
+
+FootPoint nearest_on_contour(const SampledContour& grid, const CurvePosition& position,
+                             const Eigen::Vector2d& point) {
+  const double span = grid.span;
+  const auto samples = static_cast<double>(grid.positions.size() - 1);
+  std::size_t best_i = 0;
+  double best2 = (grid.positions[0] - point).squaredNorm();
+  for (std::size_t i = 1; i < grid.positions.size(); ++i) {
+    const double d2 = (grid.positions[i] - point).squaredNorm();
+    if (d2 < best2) {
+      best2 = d2;
+      best_i = i;
     }
   }
+  const double best_t = span * static_cast<double>(best_i) / samples;
+  const auto distance = [&](double t) { return (position(t) - point).norm(); };
   // Golden-section search on the bracketing interval (the distance is unimodal there).
-  double lo = std::max(0.0, best_t - duration / samples);
-  double hi = std::min(duration, best_t + duration / samples);
+  double lo = std::max(0.0, best_t - span / samples);
+  double hi = std::min(span, best_t + span / samples);
   const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-  for (int i = 0; i < 100 && hi - lo > 1e-13 * duration; ++i) {
-    const double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
-    if (distance(m1) < distance(m2)) {
+  double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
+  double d1 = distance(m1), d2 = distance(m2);
+  for (int i = 0; i < 100 && hi - lo > 1e-13 * span; ++i) {
+    if (d1 < d2) {
       hi = m2;
+      m2 = m1;
+      d2 = d1;
+      m1 = hi - g * (hi - lo);
+      d1 = distance(m1);
     } else {
       lo = m1;
+      m1 = m2;
+      d1 = d2;
+      m2 = lo + g * (hi - lo);
+      d2 = distance(m2);
     }
   }
   const double t = 0.5 * (lo + hi);
-  return {t, std::min(distance(t), best), 0};
+  const double d = distance(t);
+  const double best = std::sqrt(best2);
+  // The grid point itself can be nearer than the refined one (a corner, a clamped end).
+  if (best < d) return {best_t, best, 0};
+  return {t, d, 0};
+}
+
+FootPoint exact_foot_point(const ReferenceTrajectory& curve, const Eigen::Vector2d& point) {
+  const CurvePosition position = [&](double t) { return curve.sample(t).position; };
+  return nearest_on_contour(sample_contour(position, curve.duration_s()), position, point);
 }
 
 }  // namespace netmc::control

@@ -6,6 +6,8 @@
 //   exact:      global search over the whole curve, then refinement (ground truth).
 
 #include <Eigen/Dense>
+#include <functional>
+#include <vector>
 
 #include "control/reference_trajectory.hpp"
 
@@ -29,5 +31,18 @@ FootPoint steffensen_foot_point(const ReferenceTrajectory& curve, const Eigen::V
                                 double t0, const FootPointOptions& options = {});
 // Global: dense sampling of [0, duration], then golden-section refinement around the best.
 FootPoint exact_foot_point(const ReferenceTrajectory& curve, const Eigen::Vector2d& point);
+
+// The dense grid of the global search, sampled once for repeated queries on one curve C(u),
+// u in [0, span] (the search then costs one curve evaluation per refinement step, not per sample).
+struct SampledContour {
+  double span = 0.0;
+  std::vector<Eigen::Vector2d> positions;  // C(span i / (size - 1))
+};
+using CurvePosition = std::function<Eigen::Vector2d(double)>;
+SampledContour sample_contour(const CurvePosition& position, double span, int samples = 4000);
+SampledContour sample_contour(const ReferenceTrajectory& curve);
+// The same global search as exact_foot_point on a pre-sampled curve; time_s is the parameter u.
+FootPoint nearest_on_contour(const SampledContour& grid, const CurvePosition& position,
+                             const Eigen::Vector2d& point);
 
 }  // namespace netmc::control

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "control/foot_point.hpp"
 #include "control/reference_trajectory.hpp"
 
 namespace netmc::control {
@@ -58,7 +59,9 @@ class EllipseTaskFrame final : public TaskFrame {
 };
 
 // Any desired motion: rc = signed distance to the exact foot point, rm = arc length to it,
-// J = [outward normal; tangent] at the foot point (exact on the contour).
+// J = [outward normal; tangent] at the foot point (exact on the contour). Where the motion stops
+// at the foot point (a sharp corner), the side is taken from the chord through it and the
+// normal is the gradient of the distance.
 class NumericalTaskFrame final : public TaskFrame {
  public:
   explicit NumericalTaskFrame(std::shared_ptr<const ReferenceTrajectory> contour);
@@ -69,6 +72,7 @@ class NumericalTaskFrame final : public TaskFrame {
  private:
   std::shared_ptr<const ReferenceTrajectory> contour_;
   std::vector<double> arc_table_;  // s at t = duration i / N
+  SampledContour grid_;            // the global search's samples, taken once
 };
 
 }  // namespace netmc::control
