@@ -135,7 +135,7 @@ ReferencePoint FeedRateTrajectory::sample(double time_s) const {
 
 double FeedRateTrajectory::contour_error(const Eigen::Vector2d& point) const {
   const FootPoint foot =
-      nearest_on_contour(grid_, [this](double u) { return curve_->evaluate(u).position; }, point);
+      nearest_on_contour(grid_, [this](double u) { return curve_->evaluate(u); }, point);
   const CurvePoint c = curve_->evaluate(foot.time_s);
   const Eigen::Vector2d right(c.first.y(), -c.first.x());
   return orientation_ * ((point - c.position).dot(right) >= 0.0 ? foot.distance_m : -foot.distance_m);

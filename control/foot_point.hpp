@@ -9,6 +9,7 @@
 #include <functional>
 #include <vector>
 
+#include "control/planar_curve.hpp"
 #include "control/reference_trajectory.hpp"
 
 namespace netmc::control {
@@ -37,12 +38,24 @@ FootPoint exact_foot_point(const ReferenceTrajectory& curve, const Eigen::Vector
 struct SampledContour {
   double span = 0.0;
   std::vector<Eigen::Vector2d> positions;  // C(span i / (size - 1))
+  // Runs of consecutive samples in a bounding circle, so that the search skips the runs that
+  // cannot hold a nearer sample than the best so far (same result as scanning every sample).
+  struct Run {
+    std::size_t first = 0, count = 0;
+    Eigen::Vector2d center = Eigen::Vector2d::Zero();
+    double radius = 0.0;
+  };
+  std::vector<Run> runs;
 };
 using CurvePosition = std::function<Eigen::Vector2d(double)>;
+using CurveEvaluation = std::function<CurvePoint(double)>;  // C, C', C'' at u
 SampledContour sample_contour(const CurvePosition& position, double span, int samples = 4000);
 SampledContour sample_contour(const ReferenceTrajectory& curve);
-// The same global search as exact_foot_point on a pre-sampled curve; time_s is the parameter u.
-FootPoint nearest_on_contour(const SampledContour& grid, const CurvePosition& position,
+// The global search of exact_foot_point on a pre-sampled curve (time_s is the parameter u): the
+// nearest grid point, then Newton on (C(u) - P) . C'(u) = 0 safeguarded by bisection inside the
+// grid interval on either side (a handful of curve evaluations instead of a golden-section search).
+FootPoint nearest_on_contour(const SampledContour& grid, const CurveEvaluation& curve,
                              const Eigen::Vector2d& point);
+CurveEvaluation curve_of(const ReferenceTrajectory& trajectory);  // u = t
 
 }  // namespace netmc::control

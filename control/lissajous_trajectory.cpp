@@ -53,7 +53,7 @@ ReferencePoint LissajousTrajectory::sample(double time_s) const {
 }
 
 double LissajousTrajectory::contour_error(const Eigen::Vector2d& point) const {
-  const FootPoint foot = nearest_on_contour(grid_, [this](double t) { return sample(t).position; }, point);
+  const FootPoint foot = nearest_on_contour(grid_, curve_of(*this), point);
   const ReferencePoint c = sample(foot.time_s);
   const Eigen::Vector2d right(c.velocity.y(), -c.velocity.x());
   return (point - c.position).dot(right) >= 0.0 ? foot.distance_m : -foot.distance_m;

@@ -133,7 +133,7 @@ double NumericalTaskFrame::perimeter_m() const {
 
 TaskCoordinates NumericalTaskFrame::at(const Eigen::Vector2d& q) const {
   const FootPoint foot =
-      nearest_on_contour(grid_, [&](double t) { return contour_->sample(t).position; }, q);
+      nearest_on_contour(grid_, curve_of(*contour_), q);
   const ReferencePoint c = contour_->sample(foot.time_s);
   const double mean_speed = arc_table_.back() / contour_->duration_s();
   TaskCoordinates r;
