@@ -94,10 +94,47 @@ CurveEvaluation curve_of(const ReferenceTrajectory& trajectory) {
   };
 }
 
-FootPoint nearest_on_contour(const SampledContour& grid, const CurveEvaluation& curve,
-                             const Eigen::Vector2d& point) {
+namespace {
+
+// Newton on g(u) = (C - P) . C' = 0 from the nearest sample, safeguarded by bisection within the
+// sample intervals on either side; the sample itself when it is nearer (a corner, a clamped end).
+FootPoint refine(const SampledContour& grid, const CurveEvaluation& curve, const Eigen::Vector2d& point,
+                 std::size_t best_i, double best2) {
   const double span = grid.span;
   const auto samples = static_cast<double>(grid.positions.size() - 1);
+  const double best_t = span * static_cast<double>(best_i) / samples;
+  // g(u) = (C - P) . C' is negative before the foot point and positive after it; its derivative
+  // is |C'|^2 + (C - P) . C''. Newton steps that leave the bracket are replaced by bisection.
+  double lo = std::max(0.0, best_t - span / samples);
+  double hi = std::min(span, best_t + span / samples);
+  double t = best_t;
+  for (int i = 0; i < 60; ++i) {
+    const CurvePoint c = curve(t);
+    const Eigen::Vector2d offset = c.position - point;
+    const double g = offset.dot(c.first);
+    const double slope = c.first.squaredNorm() + offset.dot(c.second);
+    if (g < 0.0) {
+      lo = t;
+    } else {
+      hi = t;
+    }
+    double next = slope > 0.0 ? t - g / slope : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const bool converged = std::abs(next - t) < 1e-13 * span || hi - lo < 1e-13 * span;
+    t = next;
+    if (converged) break;
+  }
+  const double d = (curve(t).position - point).norm();
+  const double best = std::sqrt(best2);
+  // The grid point itself can be nearer than the refined one (a corner, a clamped end).
+  if (best < d) return {best_t, best, 0};
+  return {t, d, 0};
+}
+
+}  // namespace
+
+FootPoint nearest_on_contour(const SampledContour& grid, const CurveEvaluation& curve,
+                             const Eigen::Vector2d& point) {
   std::size_t best_i = 0;
   double best2 = std::numeric_limits<double>::infinity();
   const auto scan = [&](const SampledContour::Run& run) {
@@ -127,33 +164,25 @@ FootPoint nearest_on_contour(const SampledContour& grid, const CurveEvaluation& 
     const double bound = lower_bound(grid.runs[r]);
     if (r != first_run && bound * bound <= best2) scan(grid.runs[r]);
   }
-  const double best_t = span * static_cast<double>(best_i) / samples;
-  // g(u) = (C - P) . C' is negative before the foot point and positive after it; its derivative
-  // is |C'|^2 + (C - P) . C''. Newton steps that leave the bracket are replaced by bisection.
-  double lo = std::max(0.0, best_t - span / samples);
-  double hi = std::min(span, best_t + span / samples);
-  double t = best_t;
-  for (int i = 0; i < 60; ++i) {
-    const CurvePoint c = curve(t);
-    const Eigen::Vector2d offset = c.position - point;
-    const double g = offset.dot(c.first);
-    const double slope = c.first.squaredNorm() + offset.dot(c.second);
-    if (g < 0.0) {
-      lo = t;
-    } else {
-      hi = t;
+  return refine(grid, curve, point, best_i, best2);
+}
+
+FootPoint nearest_on_contour(const SampledContour& grid, const CurveEvaluation& curve,
+                             const Eigen::Vector2d& point, std::size_t first, std::size_t last) {
+  const std::size_t size = grid.positions.size();
+  first = std::min(first, size - 1);
+  last = std::min(last, size - 1);
+  std::size_t best_i = first;
+  double best2 = std::numeric_limits<double>::infinity();
+  for (std::size_t i = first;; i = (i + 1) % size) {
+    const double d2 = (grid.positions[i] - point).squaredNorm();
+    if (d2 < best2) {
+      best2 = d2;
+      best_i = i;
     }
-    double next = slope > 0.0 ? t - g / slope : 0.5 * (lo + hi);
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    const bool converged = std::abs(next - t) < 1e-13 * span || hi - lo < 1e-13 * span;
-    t = next;
-    if (converged) break;
+    if (i == last) break;
   }
-  const double d = (curve(t).position - point).norm();
-  const double best = std::sqrt(best2);
-  // The grid point itself can be nearer than the refined one (a corner, a clamped end).
-  if (best < d) return {best_t, best, 0};
-  return {t, d, 0};
+  return refine(grid, curve, point, best_i, best2);
 }
 
 FootPoint exact_foot_point(const ReferenceTrajectory& curve, const Eigen::Vector2d& point) {

@@ -56,6 +56,11 @@ SampledContour sample_contour(const ReferenceTrajectory& curve);
 // grid interval on either side (a handful of curve evaluations instead of a golden-section search).
 FootPoint nearest_on_contour(const SampledContour& grid, const CurveEvaluation& curve,
                              const Eigen::Vector2d& point);
+// The same, with the samples restricted to indices first..last (wrapping past the end when
+// first > last): a local search along the contour, where the global one would jump between
+// branches of a contour that comes back near itself (the crossings of a Lissajous figure).
+FootPoint nearest_on_contour(const SampledContour& grid, const CurveEvaluation& curve,
+                             const Eigen::Vector2d& point, std::size_t first, std::size_t last);
 CurveEvaluation curve_of(const ReferenceTrajectory& trajectory);  // u = t
 
 }  // namespace netmc::control

@@ -20,8 +20,8 @@ struct LissajousParameters {
   double period_s = 10.0;
 };
 
-// The same figure as a geometric curve, u = w t in [0, 2 pi] (the period is ignored), for a
-// feed-rate profile (FeedRateTrajectory) instead of the uniform parameter rate.
+// The figure as a geometric curve, u = w t in [0, 2 pi] (the period is ignored): timed at the
+// uniform rate by LissajousTrajectory, or by a feed-rate profile (FeedRateTrajectory).
 class LissajousCurve final : public PlanarCurve {
  public:
   explicit LissajousCurve(const LissajousParameters& parameters);
@@ -40,17 +40,17 @@ class LissajousTrajectory final : public ReferenceTrajectory {
   explicit LissajousTrajectory(const LissajousParameters& parameters);
 
   ReferencePoint sample(double time_s) const override;
-  double duration_s() const override { return p_.period_s; }
+  double duration_s() const override { return period_s_; }
   // Distance to the exact foot point (global search), positive on the right of travel.
   double contour_error(const Eigen::Vector2d& point) const override;
   std::unique_ptr<ReferenceTrajectory> clone() const override;
   std::string describe() const override;
-  const LissajousParameters& parameters() const { return p_; }
 
  private:
-  LissajousParameters p_;
+  LissajousCurve curve_;
+  double period_s_;
   double rate_;  // w
-  SampledContour grid_;
+  SampledContour grid_;  // of the curve, u = w t
 };
 
 }  // namespace netmc::control

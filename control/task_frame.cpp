@@ -132,8 +132,30 @@ double NumericalTaskFrame::perimeter_m() const {
 }
 
 TaskCoordinates NumericalTaskFrame::at(const Eigen::Vector2d& q) const {
-  const FootPoint foot =
-      nearest_on_contour(grid_, curve_of(*contour_), q);
+  return coordinates(q, nearest_on_contour(grid_, curve_of(*contour_), q));
+}
+
+std::size_t NumericalTaskFrame::sample_index(double rm) const {
+  const auto entry = std::lower_bound(arc_table_.begin(), arc_table_.end(), rm);
+  const double fraction = static_cast<double>(entry - arc_table_.begin()) / static_cast<double>(arc_table_.size() - 1);
+  return static_cast<std::size_t>(std::lround(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(grid_.positions.size() - 1)));
+}
+
+TaskCoordinates NumericalTaskFrame::near(const Eigen::Vector2d& q, double rm_hint) const {
+  const double length = arc_table_.back();
+  const double window = 0.05 * length;
+  const double perimeter = perimeter_m();
+  if (perimeter > 0.0) {
+    // Closed: the window may run across the seam.
+    const auto wrap = [&](double rm) { return rm - perimeter * std::floor(rm / perimeter); };
+    return coordinates(q, nearest_on_contour(grid_, curve_of(*contour_), q, sample_index(wrap(rm_hint - window)),
+                                             sample_index(wrap(rm_hint + window))));
+  }
+  return coordinates(q, nearest_on_contour(grid_, curve_of(*contour_), q, sample_index(rm_hint - window),
+                                           sample_index(rm_hint + window)));
+}
+
+TaskCoordinates NumericalTaskFrame::coordinates(const Eigen::Vector2d& q, const FootPoint& foot) const {
   const ReferencePoint c = contour_->sample(foot.time_s);
   const double mean_speed = arc_table_.back() / contour_->duration_s();
   TaskCoordinates r;

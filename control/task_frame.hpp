@@ -24,6 +24,10 @@ class TaskFrame {
  public:
   virtual ~TaskFrame() = default;
   virtual TaskCoordinates at(const Eigen::Vector2d& q) const = 0;
+  // The same with the foot point sought along the contour near arc length `rm_hint` (e.g. where
+  // the motion was a cycle ago), for contours that come back near themselves, where the global
+  // foot point would jump to another branch. Frames with a unique foot point ignore the hint.
+  virtual TaskCoordinates near(const Eigen::Vector2d& q, double /*rm_hint*/) const { return at(q); }
   // Length of a closed contour (rm wraps at it); 0 for an open one.
   virtual double perimeter_m() const = 0;
 };
@@ -66,12 +70,17 @@ class NumericalTaskFrame final : public TaskFrame {
  public:
   explicit NumericalTaskFrame(std::shared_ptr<const ReferenceTrajectory> contour);
   TaskCoordinates at(const Eigen::Vector2d& q) const override;
+  // Searches the samples within 5 % of the contour's length of `rm_hint`.
+  TaskCoordinates near(const Eigen::Vector2d& q, double rm_hint) const override;
   // Closed when the motion ends where it starts.
   double perimeter_m() const override;
 
  private:
   std::shared_ptr<const ReferenceTrajectory> contour_;
   std::vector<double> arc_table_;  // s at t = duration i / N
+  TaskCoordinates coordinates(const Eigen::Vector2d& q, const FootPoint& foot) const;
+  std::size_t sample_index(double rm) const;  // the grid sample at arc length rm
+
   SampledContour grid_;            // the global search's samples, taken once
 };
 

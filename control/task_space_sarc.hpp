@@ -48,6 +48,7 @@ class TaskSpaceSarc final : public ContourController {
   int samples_seen_ = 0;
   Eigen::Vector2d previous_equivalent_velocity_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d estimate_ = Eigen::Vector2d::Zero();  // F_l hat
+  double desired_rm_ = 0.0;  // rm of the previous reference, where the next is sought
   bool first_ = true;
 };
 

@@ -334,6 +334,28 @@ TEST(GlobalTaskFrame, ExactOnTheNewContours) {
   expect_global_frame_is_exact(path, {1.0, 3.5, 5.0, 6.5});
 }
 
+TEST(GlobalTaskFrame, FollowsTheBranchThroughACrossing) {
+  // The 3:2 figure crosses itself at t = 0.5 s (and again later in the period). Followed from
+  // cycle to cycle, rm advances by the distance travelled; the global search jumps branches.
+  const LissajousTrajectory figure(figure_3_2());
+  const auto frame = make_task_frame(figure);
+  const double dt = 1e-3;
+  double rm = frame->at(figure.sample(0.3).position).rm;
+  bool global_jumped = false;
+  for (double t = 0.3 + dt; t < 0.7; t += dt) {
+    const auto c = figure.sample(t);
+    // 30 um to the right of travel: near the crossing the other branch is nearer than that.
+    const Eigen::Vector2d right = Eigen::Vector2d(c.velocity.y(), -c.velocity.x()).normalized();
+    const Eigen::Vector2d q = c.position + 3e-5 * right;
+    const auto followed = frame->near(q, rm + c.velocity.norm() * dt);
+    EXPECT_NEAR(followed.rm - rm, c.velocity.norm() * dt, 1e-6) << t;
+    EXPECT_NEAR(followed.rc, 3e-5, 1e-9) << t;
+    global_jumped = global_jumped || std::abs(frame->at(q).rm - followed.rm) > 1e-3;
+    rm = followed.rm;
+  }
+  EXPECT_TRUE(global_jumped);
+}
+
 TEST(GlobalTaskFrame, SharpCornerUsesTheChord) {
   const PolylineTrajectory path(square());
   const auto frame = make_task_frame(path);
