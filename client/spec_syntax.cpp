@@ -128,6 +128,15 @@ void parse_feed(const std::map<std::string, std::string>& keys, std::string_view
   feed.set_max_tangential_acceleration_m_s2(key_quantity(keys, "at", Quantity::acceleration, field, 0.0));
 }
 
+// A shape timed either at a uniform rate (period=..) or by a feed-rate profile (feed=..,amax=..).
+bool uses_feed(const std::map<std::string, std::string>& keys, std::string_view field, const std::string& shape) {
+  const bool feed = keys.contains("feed") || keys.contains("amax") || keys.contains("at");
+  if (feed && keys.contains("period")) {
+    fail(field, shape + " takes period=.. (uniform rate) or feed=..,amax=.. (feed rate), not both");
+  }
+  return feed;
+}
+
 void require_kind_argument(const KindSpec& spec, std::string_view field, const std::string& form) {
   if (spec.argument.empty()) fail(field, "expected " + form);
 }
@@ -195,13 +204,17 @@ netmc::v1::Trajectory parse_trajectory(std::string_view text) {
     c.set_revolutions(key_quantity(keys, "revolutions", Quantity::plain, field, 1.0));
   } else if (spec.kind == "ellipse") {
     const auto keys = parse_keys(spec.argument, field,
-                                 {"a", "b", "cx", "cy", "period", "start", "cw", "revolutions"});
+                                 {"a", "b", "cx", "cy", "period", "start", "cw", "revolutions", "feed", "amax", "at"});
     auto& e = *out.mutable_ellipse();
     e.set_semi_axis_x_m(key_quantity(keys, "a", Quantity::length, field));
     e.set_semi_axis_y_m(key_quantity(keys, "b", Quantity::length, field));
     e.set_center_x_m(key_quantity(keys, "cx", Quantity::length, field, 0.0));
     e.set_center_y_m(key_quantity(keys, "cy", Quantity::length, field, 0.0));
-    e.set_period_s(key_quantity(keys, "period", Quantity::time, field));
+    if (uses_feed(keys, field, "ellipse")) {
+      parse_feed(keys, field, *e.mutable_feed());
+    } else {
+      e.set_period_s(key_quantity(keys, "period", Quantity::time, field));
+    }
     e.set_start_angle_rad(key_quantity(keys, "start", Quantity::plain, field, 0.0));
     e.set_clockwise(key_quantity(keys, "cw", Quantity::plain, field, 0.0) != 0.0);
     e.set_revolutions(key_quantity(keys, "revolutions", Quantity::plain, field, 1.0));
@@ -224,8 +237,7 @@ netmc::v1::Trajectory parse_trajectory(std::string_view text) {
     l.set_phase_rad(key_quantity(keys, "phase", Quantity::plain, field, 0.0));
     l.set_center_x_m(key_quantity(keys, "cx", Quantity::length, field, 0.0));
     l.set_center_y_m(key_quantity(keys, "cy", Quantity::length, field, 0.0));
-    if (keys.contains("feed") || keys.contains("amax") || keys.contains("at")) {
-      if (keys.contains("period")) fail(field, "lissajous takes period=.. (uniform rate) or feed=..,amax=.. (feed rate), not both");
+    if (uses_feed(keys, field, "lissajous")) {
       parse_feed(keys, field, *l.mutable_feed());
     } else {
       l.set_period_s(key_quantity(keys, "period", Quantity::time, field));

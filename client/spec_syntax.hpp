@@ -17,6 +17,7 @@ enum class Quantity { length, time, speed, acceleration, plain };
 double parse_quantity(std::string_view text, Quantity quantity, std::string_view field);
 
 // --trajectory circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=..
+//              (ellipse and lissajous: feed=..,amax=..[,at=..] instead of period for a feed rate)
 //              | line:x0=..,y0=..,x1=..,y1=..,duration=..
 //              | lissajous:ax=..,ay=..,p=3,q=2,period=..[,phase=..,cx=..,cy=..][,feed=..,amax=..[,at=..]]
 //              | polyline:points=X,Y;X,Y;...,vmax=..,amax=..[,corner=..]

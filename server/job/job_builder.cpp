@@ -64,6 +64,15 @@ std::shared_ptr<const control::ReferenceTrajectory> build_trajectory(
       p.start_angle_rad = e.start_angle_rad();
       p.clockwise = e.clockwise();
       p.revolutions = e.revolutions() == 0.0 ? 1.0 : e.revolutions();
+      if (e.has_feed()) {
+        if (p.revolutions != 1.0) {
+          throw std::invalid_argument("ellipse revolutions: a feed-rate ellipse runs one revolution, got " +
+                                      std::to_string(p.revolutions));
+        }
+        p.period_s = 1.0;  // unused: the feed times the motion
+        return std::make_shared<control::FeedRateTrajectory>(std::make_shared<control::EllipseCurve>(p),
+                                                             build_feed(e.feed()));
+      }
       return std::make_shared<control::EllipseTrajectory>(p);
     }
     case netmc::v1::Trajectory::kLine: {

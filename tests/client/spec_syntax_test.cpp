@@ -71,6 +71,12 @@ TEST(SpecSyntax, ContourLibraryTrajectories) {
   EXPECT_DOUBLE_EQ(fed.lissajous().feed().max_normal_acceleration_m_s2(), 0.02);
   EXPECT_DOUBLE_EQ(fed.lissajous().feed().max_tangential_acceleration_m_s2(), 0.0);  // = amax
 
+  const auto ellipse = parse_trajectory("ellipse:a=20mm,b=5mm,feed=20mm/s,amax=30mm/s2,at=0.1");
+  EXPECT_DOUBLE_EQ(ellipse.ellipse().feed().feed_m_s(), 0.02);
+  EXPECT_DOUBLE_EQ(ellipse.ellipse().feed().max_tangential_acceleration_m_s2(), 0.1);
+  EXPECT_DOUBLE_EQ(ellipse.ellipse().period_s(), 0.0);
+  EXPECT_FALSE(parse_trajectory("ellipse:a=20mm,b=5mm,period=8s").ellipse().has_feed());
+
   const auto square = parse_trajectory("polyline:points=0,0;20mm,0;20mm,10mm;0,10mm;0,0,vmax=10mm/s,amax=50mm/s^2,corner=2mm/s");
   ASSERT_TRUE(square.has_polyline());
   ASSERT_EQ(square.polyline().points_size(), 5);
@@ -99,6 +105,7 @@ TEST(SpecSyntax, ContourLibraryTrajectories) {
   EXPECT_NE(error("lissajous:ax=20mm,ay=15mm,p=3,q=2").find("missing key 'period'"), std::string::npos);
   EXPECT_NE(error("lissajous:ax=20mm,ay=15mm,p=3,q=2,period=8s,feed=1mm/s,amax=1mm/s2").find("not both"),
             std::string::npos);
+  EXPECT_NE(error("ellipse:a=20mm,b=5mm,period=8s,amax=1").find("ellipse takes period"), std::string::npos);
   EXPECT_NE(error("polyline:points=0,0;10mm,vmax=1mm/s,amax=1mm/s2").find("--trajectory points: point 2: expected X,Y"),
             std::string::npos);
   EXPECT_NE(error("polyline:points=0,0;10mm,0,0,vmax=1mm/s,amax=1mm/s2").find("point 2"), std::string::npos);

@@ -281,6 +281,29 @@ TEST(FeedRateTrajectory, LissajousAtFeedAndOpenSpline) {
   EXPECT_LT((open.sample(open.duration_s()).position - Eigen::Vector2d(0.05, 0.0)).norm(), 1e-15);
 }
 
+TEST(FeedRateTrajectory, EllipseAtFeedKeepsItsClosedFormContourError) {
+  EllipseParameters e;
+  e.center = {0.05, 0.05};
+  e.semi_axis_x_m = 0.02;
+  e.semi_axis_y_m = 0.005;
+  e.start_angle_rad = 0.4;
+  e.clockwise = true;
+  const FeedRateLimits limits{0.02, 0.03, 0.1};
+  const FeedRateTrajectory motion(std::make_shared<EllipseCurve>(e), limits);
+  expect_consistent_derivatives(motion, 0.02, 0.1);
+  expect_within_limits(motion, limits);
+  // Clockwise from the start angle, and positive outside as the closed form says.
+  const EllipseTrajectory uniform(e);
+  EXPECT_LT((motion.sample(0.0).position - uniform.sample(0.0).position).norm(), 1e-15);
+  EXPECT_LT((motion.sample(0.01).velocity.normalized() - uniform.sample(0.0).velocity.normalized()).norm(), 1e-2);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> x(0.02, 0.08), y(0.035, 0.065);
+  for (int i = 0; i < 50; ++i) {
+    const Eigen::Vector2d q(x(random), y(random));
+    EXPECT_NEAR(motion.contour_error(q), uniform.contour_error(q), 1e-12) << q.transpose();
+  }
+}
+
 // GTCF on the new contours: rc is the contour error to first order (the numerical frame's rc is
 // the exact distance, so the difference stays at rounding), J orthonormal on the contour, J's
 // rows the gradients of rc and rm.
