@@ -10,6 +10,7 @@
 
 #include "control/circle_trajectory.hpp"
 #include "control/contour_error_estimator.hpp"
+#include "control/corner_foot_point.hpp"
 #include "control/foot_point.hpp"
 #include "control/heart_trajectory.hpp"
 #include "netsim/random_stream.hpp"
@@ -130,7 +131,8 @@ std::function<int()> add_cee_command(CLI::App& app) {
       }));
       // Warm start: the previous sample's estimate advanced by one sample period.
       const double step = cloud.size() > 1 ? cloud[1].desired_time_s - cloud[0].desired_time_s : 0.0;
-      double newton_t = cloud.front().desired_time_s - step, steffensen_t = newton_t;
+      const double first_t = cloud.front().desired_time_s - step;
+      double newton_t = first_t, steffensen_t = first_t;
       rows.push_back(evaluate("Newton foot point", cloud, high, [&](const CloudPoint& p) {
         const auto f = control::newton_foot_point(*curve, p.actual, newton_t + step);
         newton_t = f.time_s;
@@ -141,12 +143,24 @@ std::function<int()> add_cee_command(CLI::App& app) {
         steffensen_t = f.time_s;
         return std::pair{f.distance_m, f.iterations};
       }));
+      // The same, plus a second solve from the mirror image across a nearby sharp corner.
+      for (const auto& [name, method] : {std::pair{"Newton + corner check", &control::newton_foot_point},
+                                         std::pair{"Steffensen + corner check", &control::steffensen_foot_point}}) {
+        if (curve->corner_times_s().empty()) break;
+        double t_previous = first_t;
+        const control::LocalFootPointMethod local = method;
+        rows.push_back(evaluate(name, cloud, high, [&](const CloudPoint& p) {
+          const auto f = control::corner_checked_foot_point(*curve, p.actual, t_previous + step, local);
+          t_previous = f.time_s;
+          return std::pair{f.distance_m, f.iterations};
+        }));
+      }
       fmt::print("{}: {} samples along the contour, lag within [0, {} ms], offset N(0, {} um), seed {}; high curvature: |kappa| >= {:.1f} 1/m (top quarter)\n",
                  curve->describe(), cloud.size(), flags->max_lag_ms, flags->normal_sd_um, flags->seed, high);
-      fmt::print("  {:<22} {:>14} {:>13} {:>20} {:>10} {:>9} {:>10}\n", "method", "mean err [um]",
+      fmt::print("  {:<26} {:>14} {:>13} {:>20} {:>10} {:>9} {:>10}\n", "method", "mean err [um]",
                  "max err [um]", "high-curv mean [um]", "mean iter", "max iter", "ns/estimate");
       for (const auto& r : rows) {
-        fmt::print("  {:<22} {:>14.4f} {:>13.4f} {:>20.4f} {:>10.2f} {:>9} {:>10.0f}\n", r.name,
+        fmt::print("  {:<26} {:>14.4f} {:>13.4f} {:>20.4f} {:>10.2f} {:>9} {:>10.0f}\n", r.name,
                    r.mean_error_m * 1e6, r.max_error_m * 1e6, r.high_curvature_mean_error_m * 1e6,
                    r.mean_iterations, r.max_iterations, r.ns_per_estimate);
       }

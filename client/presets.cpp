@@ -49,65 +49,218 @@ netmc::v1::JobSpec seed001_job(const std::string& controller) {
 
 std::vector<std::string> preset_names() {
   return {"seed001", "seed001-ellipse", "seed001-line", "seed001-long-delay", "seed001-bursty",
-          "thesis-ellipse", "thesis-circle"};
+          "thesis-ellipse", "thesis-circle", "thesis-darc", "thesis-ellipse-delay"};
 }
 
 namespace {
 
-// Thesis (paper 000) eq. 2-68: x = 0.2 sin 7t, y = -0.02 cos 7t + 0.02 for 25 s, linear-motor
-// stage, Ts = 0.2 ms, 0.5 um encoder, no network; metrics over 10-25 s (digest 2.12 [A]).
-// Both thesis chapter-2 studies: LTCF-SARC against GTCF-SARC on the linear-motor stage.
-StudyPlan thesis_study(const std::string& title, const netmc::v1::Trajectory& trajectory,
-                       std::vector<PaperRow> paper, const std::string& source) {
+// Thesis (paper 000) studies: the linear-motor stage, Ts = 0.2 ms, 0.5 um encoder, no network,
+// one run per controller, judged on the steady metrics from `evaluation_start_s`.
+netmc::v1::JobSpec thesis_job(const netmc::v1::Trajectory& trajectory, const std::string& controller,
+                              const std::string& label, double evaluation_start_s) {
+  netmc::v1::JobSpec job;
+  job.set_name(label);
+  *job.mutable_trajectory() = trajectory;
+  job.set_plant("linmotor");
+  job.mutable_controller()->set_name(controller);
+  job.set_sample_period_s(2e-4);
+  job.mutable_sensor()->set_resolution_m(0.5e-6);
+  job.set_evaluation_start_s(evaluation_start_s);
+  job.set_iterations(1);
+  job.set_seed(1);
+  return job;
+}
+
+// x = a sin wt, y = b - b cos wt for `duration_s`: the thesis's ellipses, counter-clockwise
+// from the origin.
+netmc::v1::Trajectory thesis_ellipse_motion(double a, double b, double omega, double duration_s) {
+  netmc::v1::Trajectory t;
+  auto& e = *t.mutable_ellipse();
+  e.set_semi_axis_x_m(a);
+  e.set_semi_axis_y_m(b);
+  e.set_center_x_m(0.0);
+  e.set_center_y_m(b);
+  e.set_period_s(2.0 * std::numbers::pi / omega);
+  e.set_start_angle_rad(-std::numbers::pi / 2.0);
+  e.set_revolutions(duration_s * omega / (2.0 * std::numbers::pi));
+  return t;
+}
+
+StudyPlan thesis_plan(const std::string& title, std::vector<PaperRow> paper, const std::string& source) {
   StudyPlan plan;
   plan.title = title;
   plan.steady_metrics = true;
-  for (const char* controller : {"ltcf-sarc", "gtcf-sarc"}) {
-    netmc::v1::JobSpec job;
-    *job.mutable_trajectory() = trajectory;
-    job.set_plant("linmotor");
-    job.mutable_controller()->set_name(controller);
-    job.set_sample_period_s(2e-4);
-    job.mutable_sensor()->set_resolution_m(0.5e-6);
-    job.set_evaluation_start_s(10.0);
-    job.set_iterations(1);
-    job.set_seed(1);
-    plan.jobs.push_back(job);
-  }
   plan.paper = std::move(paper);
   plan.paper_source = source;
   return plan;
 }
 
+// The drive is linear up to about 8 V (thesis appendix A, digest 2.11); every thesis run is
+// limited there. Case B starts 6 cm off the desired point, where the unfiltered feedback asks
+// for hundreds of volts, and case D's halt asks for a 700 V spike.
+constexpr double kThesisDriveLimitV = 8.0;
+
+// Thesis eq. 2-68 (case C): x = 0.2 sin 7t, y = -0.02 cos 7t + 0.02 for 25 s; metrics over
+// 10-25 s (digest 2.12 [A]). Case D: as C, but the reference halts for 4 ms at t = 6 pi s
+// (digest 2.12 [A]). DARC (ch. 3) beside the chapter's SARC; the thesis has no DARC run on this
+// ellipse.
 StudyPlan thesis_ellipse() {
-  netmc::v1::Trajectory t;
-  auto& e = *t.mutable_ellipse();
-  e.set_semi_axis_x_m(0.2);
-  e.set_semi_axis_y_m(0.02);
-  e.set_center_x_m(0.0);
-  e.set_center_y_m(0.02);
-  e.set_period_s(2.0 * std::numbers::pi / 7.0);
-  e.set_start_angle_rad(-std::numbers::pi / 2.0);
-  e.set_revolutions(25.0 * 7.0 / (2.0 * std::numbers::pi));  // 25 s
-  return thesis_study("thesis Table 2-2 (case C): 10:1 ellipse at 7 rad/s, linear motors, Ts = 0.2 ms", t,
-                      {{"ltcf-sarc", 5.66e-6, 22.37e-6}, {"gtcf-sarc", 2.20e-6, 6.73e-6}},
-                      "thesis Table 2-2 (C)");
+  const netmc::v1::Trajectory t = thesis_ellipse_motion(0.2, 0.02, 7.0, 25.0);
+  StudyPlan plan = thesis_plan(
+      "thesis Table 2-2: 10:1 ellipse at 7 rad/s, linear motors, Ts = 0.2 ms; case D halts 4 ms at 6 pi s",
+      {{"ltcf-sarc", 5.66e-6, 22.37e-6},
+       {"gtcf-sarc", 2.20e-6, 6.73e-6},
+       {"ltcf-sarc (D)", 5.76e-6, 68.50e-6},
+       {"gtcf-sarc (D)", 2.29e-6, 23.43e-6}},
+      "thesis Table 2-2");
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "gtcf-darc"}) {
+    plan.jobs.push_back(thesis_job(t, controller, controller, 10.0));
+  }
+  netmc::v1::Trajectory halted = t;
+  halted.mutable_halt()->set_at_s(6.0 * std::numbers::pi);
+  halted.mutable_halt()->set_duration_s(0.004);
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "gtcf-darc"}) {
+    plan.jobs.push_back(thesis_job(halted, controller, std::string(controller) + " (D)", 10.0));
+  }
+  for (auto& job : plan.jobs) job.set_command_limit(kThesisDriveLimitV);
+  return plan;
 }
 
-// Thesis eq. 2-65 (case A, zero initial error): x = 0.04 sin 15t, y = -0.04 cos 15t + 0.04,
-// 30 s, metrics over 10-30 s.
+// Thesis eq. 2-65 (case A, zero initial error): x = 0.04 sin 15t, y = -0.04 cos 15t + 0.04;
+// eq. 2-66 (case B, large initial error): x = 0.04 cos 15t, y = -0.04 sin 15t + 0.05 (clockwise)
+// with the stage at rest at (0, 0), GTCF with the initialization filter (eq. 2-67, wc = 8,
+// wm = 1). 30 s, metrics over 10-30 s. Both cases run with the 8 V drive limit.
 StudyPlan thesis_circle() {
-  netmc::v1::Trajectory t;
-  auto& c = *t.mutable_circle();
-  c.set_radius_m(0.04);
-  c.set_center_x_m(0.0);
-  c.set_center_y_m(0.04);
-  c.set_period_s(2.0 * std::numbers::pi / 15.0);
-  c.set_start_angle_rad(-std::numbers::pi / 2.0);
-  c.set_revolutions(30.0 * 15.0 / (2.0 * std::numbers::pi));  // 30 s
-  return thesis_study("thesis Table 2-1 (case A): circle r = 4 cm at 15 rad/s, linear motors, Ts = 0.2 ms", t,
-                      {{"ltcf-sarc", 13.33e-6, 31.54e-6}, {"gtcf-sarc", 9.92e-6, 25.89e-6}},
-                      "thesis Table 2-1 (A)");
+  netmc::v1::Trajectory a;
+  auto& ca = *a.mutable_circle();
+  ca.set_radius_m(0.04);
+  ca.set_center_x_m(0.0);
+  ca.set_center_y_m(0.04);
+  ca.set_period_s(2.0 * std::numbers::pi / 15.0);
+  ca.set_start_angle_rad(-std::numbers::pi / 2.0);
+  ca.set_revolutions(30.0 * 15.0 / (2.0 * std::numbers::pi));  // 30 s
+  netmc::v1::Trajectory b = a;
+  auto& cb = *b.mutable_circle();
+  cb.set_center_y_m(0.05);
+  cb.set_start_angle_rad(0.0);
+  cb.set_clockwise(true);
+
+  StudyPlan plan = thesis_plan(
+      "thesis Table 2-1: circle r = 4 cm at 15 rad/s, linear motors, Ts = 0.2 ms; case A from the "
+      "desired start, case B from rest at (0, 0) with an 8 V drive limit",
+      {{"ltcf-sarc A", 13.33e-6, 31.54e-6}, {"gtcf-sarc A", 9.92e-6, 25.89e-6}, {"gtcf-sarc B", 7.43e-6, 21.19e-6}},
+      "thesis Table 2-1");
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "gtcf-darc"}) {
+    plan.jobs.push_back(thesis_job(a, controller, std::string(controller) + " A", 10.0));
+    plan.jobs.back().set_command_limit(kThesisDriveLimitV);
+  }
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "gtcf-darc"}) {
+    auto job = thesis_job(b, controller, std::string(controller) + " B", 10.0);
+    job.mutable_initial_position()->set_x_m(0.0);
+    job.mutable_initial_position()->set_y_m(0.0);
+    job.set_command_limit(kThesisDriveLimitV);
+    // The filter lives in the global frame; the local-frame controller meets the raw error (as
+    // the thesis's C1, which saturates and goes unstable here).
+    if (std::string(controller).starts_with("gtcf")) {
+      job.mutable_controller()->mutable_task_space()->set_initialization_filter(true);
+    }
+    plan.jobs.push_back(job);
+  }
+  return plan;
+}
+
+// Thesis ch. 3, Exp I (eq. 3-48): x = 0.2 sin 4t, y = -0.1 cos 4t + 0.1, 10 s, metrics over
+// 2-10 s (digest 2.12 [A]), Set1 (no load): the thesis's C1 GTCF-DARC, C2 GTCF-DIARC and C3
+// LTCF-DIARC (digest 2.7 [A]: built from the LTCF of 2.4 and DIARC), beside both frames of SARC,
+// which the thesis did not run here.
+StudyPlan thesis_darc() {
+  const netmc::v1::Trajectory t = thesis_ellipse_motion(0.2, 0.1, 4.0, 10.0);
+  StudyPlan plan = thesis_plan("thesis Table 3-1 (Exp I, Set1): 2:1 ellipse at 4 rad/s, linear motors, Ts = 0.2 ms",
+                               {{"gtcf-darc", 2.42e-6, 8.57e-6},
+                                {"gtcf-diarc", 2.42e-6, 8.15e-6},
+                                {"ltcf-diarc", 3.30e-6, 10.14e-6}},
+                               "thesis Table 3-1 (Set1)");
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "ltcf-darc", "gtcf-darc", "ltcf-diarc", "gtcf-diarc"}) {
+    plan.jobs.push_back(thesis_job(t, controller, controller, 2.0));
+  }
+  return plan;
+}
+
+// Paper 001's ADRC on the linear-motor stage (it has no gains for it): b0 = 1/M per axis with
+// the thesis's nominal masses, and the closed loop (s + w_c)^2 of GTCF-ADRC's contour loop,
+// w_c = 300 rad/s: kp = w_c^2 / b0, kd = 2 w_c / b0; observer w0 = 1500 rad/s (5 w_c, w0 h = 0.3
+// as GTCF-ADRC's); TD r0 = 2000 1/s (r0 h = 0.4 for the forward-Euler TD; its amplitude error at
+// 7 rad/s is 1e-5, i.e. 0.2 um on the 20 mm semi-axis).
+void set_linmotor_adrc_gains(netmc::v1::ControllerSpec& controller) {
+  constexpr double kLoopBandwidth = 300.0;
+  constexpr double kMassX = 0.1;
+  constexpr double kMassY = 0.55;
+  auto& x = *controller.mutable_adrc();
+  x.set_r0(2000.0);
+  x.set_w0(1500.0);
+  x.set_b0(1.0 / kMassX);
+  x.set_kp(kLoopBandwidth * kLoopBandwidth * kMassX);
+  x.set_kd(2.0 * kLoopBandwidth * kMassX);
+  // The coupling term must not be cancelled as disturbance (the paper's own-command input would
+  // cancel it: PIDCCC then changes e_rms by < 3 %); without coupling the two inputs are equal.
+  x.set_observer_sees_sent_command(true);
+  auto& y = *controller.mutable_adrc_y();
+  y.set_b0(1.0 / kMassY);
+  y.set_kp(kLoopBandwidth * kLoopBandwidth * kMassY);
+  y.set_kd(2.0 * kLoopBandwidth * kMassY);
+}
+
+// The thesis ellipse (eq. 2-68) under loop delay on the controller->actuator link, for the two
+// SARC parents, GTCF-ADRC (default and delay-margin tunings) and per-axis ADRC: 10 s runs (50 k cycles at 0.2 ms), steady metrics
+// over 4-10 s (the start from rest with the reference at 1.4 m/s has settled by then).
+StudyPlan thesis_ellipse_delay() {
+  StudyPlan plan;
+  plan.title = "thesis ellipse (eq. 2-68) under loop delay: 10 s, metrics over 4-10 s, linear motors, h = 0.2 ms";
+  plan.steady_metrics = true;
+  std::vector<netmc::v1::DelayProfile> delays(6);
+  delays[0].mutable_none();
+  delays[1].mutable_uniform()->set_min_s(0.1e-3);
+  delays[1].mutable_uniform()->set_max_s(0.5e-3);
+  delays[2].mutable_uniform()->set_min_s(0.2e-3);
+  delays[2].mutable_uniform()->set_max_s(1e-3);
+  delays[3].set_constant_s(1e-3);
+  delays[4].set_constant_s(2e-3);
+  delays[5].set_constant_s(3e-3);
+  // gtcf-adrc-soft: GTCF-ADRC retuned for delay margin (w_c = 120, w_m = 60, observers 4x),
+  // the most accurate of the tunings tried that hold 2 ms constant delay.
+  // Mean delay of each column in periods: gtcf-adrc-matched feeds its observers the task command
+  // that many periods late (GtcfAdrcGains::observer_input_delay), default bandwidths otherwise.
+  const unsigned mean_delay_periods[] = {0, 2, 3, 5, 10, 15};
+  const netmc::v1::Trajectory trajectory = thesis_ellipse_motion(0.2, 0.02, 7.0, 10.0);
+  for (const char* run : {"ltcf-sarc", "gtcf-sarc", "gtcf-adrc", "gtcf-adrc-matched", "gtcf-adrc-soft", "adrc",
+                          "adrc+pidccc"}) {
+    const std::string_view label(run);
+    for (std::size_t column = 0; column < delays.size(); ++column) {
+      const auto& delay = delays[column];
+      netmc::v1::JobSpec job =
+          thesis_job(trajectory, label.starts_with("gtcf-adrc") ? "gtcf-adrc" : std::string(label), run, 4.0);
+      if (label == "gtcf-adrc-matched") {
+        job.mutable_controller()->mutable_gtcf_adrc()->set_observer_input_delay(mean_delay_periods[column]);
+      }
+      if (label == "gtcf-adrc-soft") {
+        auto& gains = *job.mutable_controller()->mutable_gtcf_adrc();
+        gains.set_wc(120.0);
+        gains.set_wm(60.0);
+        gains.set_woc(500.0);
+        gains.set_wom(250.0);
+      }
+      set_linmotor_adrc_gains(*job.mutable_controller());  // used by adrc, adrc+... only
+      // PIDCCC: kp the largest of 2e3, 1e4, 3e4, 1e5, 3e5 V/m whose max error under
+      // U(0.1, 0.5) ms delay stays within 2x of its no-delay value (3e5: 2.6 -> 148 um); the
+      // difference term (kd per sample) does not matter at this period, so kd = 0.
+      job.mutable_controller()->mutable_pidccc()->set_kp(1e5);
+      job.mutable_controller()->mutable_pidccc()->set_ki(0.0);
+      job.mutable_controller()->mutable_pidccc()->set_kd(0.0);
+      *job.mutable_downlink()->mutable_delay() = delay;
+      plan.jobs.push_back(job);
+    }
+  }
+  return plan;
 }
 
 }  // namespace
@@ -162,6 +315,8 @@ StudyPlan make_preset(std::string_view name) {
   }
   if (name == "thesis-ellipse") return thesis_ellipse();
   if (name == "thesis-circle") return thesis_circle();
+  if (name == "thesis-darc") return thesis_darc();
+  if (name == "thesis-ellipse-delay") return thesis_ellipse_delay();
   std::string expected;
   for (const auto& n : preset_names()) expected += (expected.empty() ? "" : ", ") + n;
   throw std::invalid_argument("--preset: unknown name '" + std::string(name) +

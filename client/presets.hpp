@@ -11,7 +11,7 @@
 namespace netmc::cli {
 
 struct PaperRow {
-  std::string controller;
+  std::string controller;  // the run's label, or its controller name
   double e_max_m;          // paper 001: e_max and e_sum; steady studies: RMS and max
   double e_sum_m;
 };

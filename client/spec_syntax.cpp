@@ -341,8 +341,7 @@ netmc::v1::LossProfile parse_loss(std::string_view text, std::string_view flag) 
   return out;
 }
 
-void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains) {
-  constexpr std::string_view flag = "--adrc";
+void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains, std::string_view flag) {
   const auto keys = parse_keys(text, flag, {"r0", "w0", "b0", "kp", "kd", "observer", "observer_input"});
   for (const auto& [key, value] : keys) {
     if (key == "observer") {
@@ -362,6 +361,34 @@ void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains) {
   }
 }
 
+void parse_gtcf_adrc_gains(std::string_view text, netmc::v1::GtcfAdrcGains& gains) {
+  constexpr std::string_view flag = "--gtcf-adrc";
+  const auto keys = parse_keys(text, flag, {"wc", "wm", "wo", "woc", "wom", "observer", "delay"});
+  if (keys.contains("wo") && (keys.contains("woc") || keys.contains("wom"))) {
+    fail(flag, "wo sets both observers: give either wo or woc/wom");
+  }
+  for (const auto& [key, value] : keys) {
+    if (key == "observer") {
+      if (value != "euler" && value != "zoh") fail(flag, "observer expects euler or zoh, got '" + value + "'");
+      gains.set_observer(value);
+      continue;
+    }
+    const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
+    if (key == "delay") {
+      if (number < 0 || number != std::floor(number) || number > 100000) {
+        fail(flag, "delay expects a whole number of periods, got '" + value + "'");
+      }
+      gains.set_observer_input_delay(static_cast<std::uint32_t>(number));
+      continue;
+    }
+    if (!(number > 0.0)) fail(flag, key + " expects a positive bandwidth in rad/s, got '" + value + "'");
+    if (key == "wc") gains.set_wc(number);
+    if (key == "wm") gains.set_wm(number);
+    if (key == "wo" || key == "woc") gains.set_woc(number);
+    if (key == "wo" || key == "wom") gains.set_wom(number);
+  }
+}
+
 void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains) {
   constexpr std::string_view flag = "--ilc";
   const auto keys = parse_keys(text, flag, {"kcp", "kcd", "forgetting", "q", "lead"});
@@ -378,6 +405,31 @@ void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains) {
       gains.set_lead_samples(static_cast<std::uint32_t>(number));
     }
   }
+}
+
+void parse_task_space_gains(std::string_view text, netmc::v1::TaskSpaceGains& gains) {
+  constexpr std::string_view flag = "--task-space";
+  const auto keys = parse_keys(text, flag, {"init_filter", "wc", "wm"});
+  for (const auto& [key, value] : keys) {
+    if (key == "init_filter") {
+      if (value != "on" && value != "off") fail(flag, "init_filter expects on or off, got '" + value + "'");
+      gains.set_initialization_filter(value == "on");
+      continue;
+    }
+    const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
+    if (!(number > 0.0)) fail(flag, key + " expects a positive bandwidth in rad/s, got '" + value + "'");
+    if (key == "wc") gains.set_filter_wc(number);
+    if (key == "wm") gains.set_filter_wm(number);
+  }
+}
+
+netmc::v1::Position parse_position(std::string_view text, std::string_view flag) {
+  const auto keys = parse_keys(text, flag, {"x", "y"});
+  if (!keys.contains("x") || !keys.contains("y")) fail(flag, "expected x=LENGTH,y=LENGTH");
+  netmc::v1::Position position;
+  position.set_x_m(parse_quantity(keys.at("x"), Quantity::length, std::string(flag) + " x"));
+  position.set_y_m(parse_quantity(keys.at("y"), Quantity::length, std::string(flag) + " y"));
+  return position;
 }
 
 void parse_pid_gains(std::string_view text, netmc::v1::PidGains& gains, std::string_view flag) {

@@ -30,10 +30,18 @@ netmc::v1::Trajectory parse_trajectory(std::string_view text);
 netmc::v1::DelayProfile parse_delay(std::string_view text, std::string_view flag);
 // --loss none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]
 netmc::v1::LossProfile parse_loss(std::string_view text, std::string_view flag);
-// --adrc r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent
-void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains);
+// --adrc / --adrc-y r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent
+void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains,
+                      std::string_view flag = "--adrc");
+// --gtcf-adrc wc=..,wm=..,wo=..|woc=..,wom=..,observer=euler|zoh,delay=PERIODS
+// (bandwidths in rad/s; delay: the observers see the task command this many periods late)
+void parse_gtcf_adrc_gains(std::string_view text, netmc::v1::GtcfAdrcGains& gains);
 // --ilc kcp=..,kcd=..,forgetting=..,q=..(Hz),lead=..(samples)
 void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains);
+// --task-space init_filter=on|off,wc=..,wm=.. (rad/s)
+void parse_task_space_gains(std::string_view text, netmc::v1::TaskSpaceGains& gains);
+// --initial-position x=..,y=.. (lengths)
+netmc::v1::Position parse_position(std::string_view text, std::string_view flag);
 // --pidccc / --pid kp=..,ki=..,kd=..
 void parse_pid_gains(std::string_view text, netmc::v1::PidGains& gains, std::string_view flag);
 

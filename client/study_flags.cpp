@@ -42,7 +42,8 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
 
   const bool changes_setup = !f.trajectory.empty() || !f.plant.empty() || !f.delay.empty() ||
                              !f.uplink_delay.empty() || !f.loss.empty() || !f.uplink_loss.empty() ||
-                             !f.sample_period.empty() || !f.duration.empty() || !f.sensor.empty();
+                             !f.sample_period.empty() || !f.duration.empty() || !f.sensor.empty() ||
+                             !f.initial_position.empty();
   if (changes_setup) {
     plan.paper.clear();
     plan.title = "custom study (based on " + (f.spec_file.empty() ? "preset " + (f.preset.empty() ? std::string("seed001") : f.preset) : f.spec_file) + ")";
@@ -55,6 +56,7 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     plan.jobs.clear();
     for (const auto& name : names) {
       netmc::v1::JobSpec job = base;
+      job.clear_name();  // labelled by its controller, not by the base job's label
       job.mutable_controller()->set_name(name);
       plan.jobs.push_back(job);
     }
@@ -98,10 +100,20 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     if (f.iterations != 0) job.set_iterations(static_cast<std::uint32_t>(f.iterations));
     if (f.seed >= 0) job.set_seed(static_cast<std::uint64_t>(f.seed));
     if (!f.adrc.empty()) parse_adrc_gains(f.adrc, *job.mutable_controller()->mutable_adrc());
+    if (!f.adrc_y.empty()) {
+      parse_adrc_gains(f.adrc_y, *job.mutable_controller()->mutable_adrc_y(), "--adrc-y");
+    }
+    if (!f.gtcf_adrc.empty()) {
+      parse_gtcf_adrc_gains(f.gtcf_adrc, *job.mutable_controller()->mutable_gtcf_adrc());
+    }
     if (!f.ilc.empty()) parse_ilc_gains(f.ilc, *job.mutable_controller()->mutable_ilccc());
     if (!f.pidccc.empty()) parse_pid_gains(f.pidccc, *job.mutable_controller()->mutable_pidccc(), "--pidccc");
     if (!f.pid.empty()) parse_pid_gains(f.pid, *job.mutable_controller()->mutable_pid(), "--pid");
     if (!f.estimator.empty()) job.mutable_controller()->set_estimator(f.estimator);
+    if (!f.task_space.empty()) parse_task_space_gains(f.task_space, *job.mutable_controller()->mutable_task_space());
+    if (!f.initial_position.empty()) {
+      *job.mutable_initial_position() = parse_position(f.initial_position, "--initial-position");
+    }
     if (!f.sensor.empty()) {
       // resolution=..,noise=.. (lengths)
       for (const auto& item : split_list(f.sensor)) {
@@ -125,14 +137,14 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--clock", flags.clock,
                   "Distributed runs: lockstep (virtual time, equals sim) or realtime (wall clock)")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
-  app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty");
+  app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty, thesis-ellipse, thesis-circle, thesis-darc, thesis-ellipse-delay");
   app->add_option("--spec", flags.spec_file, "Job spec as JSON (protobuf JSON mapping of netmc.v1.JobSpec)");
   app->add_option("--trajectory", flags.trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. (or feed=..,amax=.. instead of period) | line:x0=..,y0=..,x1=..,y1=..,duration=.. | "
                   "lissajous:ax=20mm,ay=15mm,p=3,q=2,period=20s[,phase=..,cx=..,cy=..] (or feed=..,amax=.. instead of period) | "
                   "polyline:points=0,0;10mm,0;10mm,10mm,vmax=10mm/s,amax=100mm/s2[,corner=..] | "
                   "spline:points=X,Y;X,Y;...,feed=10mm/s,amax=50mm/s2[,at=..] (points closed when the last equals the first)");
   app->add_option("--plant", flags.plant, "seed001 | ballscrew | linmotor | stage004");
-  app->add_option("--controller", flags.controllers, "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc ...");
+  app->add_option("--controller", flags.controllers, "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc ...; task space: gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, gtcf-adrc");
   app->add_option("--delay", flags.delay, "Loop delay on the controller->actuator link: none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=.. | pareto:scale=..,shape=.. | markov:good=A..B,bad=C..D,p_gb=..,p_bg=.. | trace:FILE.csv");
   app->add_option("--uplink-delay", flags.uplink_delay, "Sensor->controller delay (same forms as --delay)");
   app->add_option("--loss", flags.loss, "Setpoint loss: none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]");
@@ -146,10 +158,14 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--iterations", flags.iterations, "ILC iterations per run")->check(CLI::Range(1, 100000));
   app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);
   app->add_option("--adrc", flags.adrc, "ADRC gains: r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent");
+  app->add_option("--adrc-y", flags.adrc_y, "The y axis's ADRC gains where they differ from --adrc (same keys)");
+  app->add_option("--gtcf-adrc", flags.gtcf_adrc, "Task-space ADRC bandwidths [rad/s]: wc=..,wm=..,wo=..|woc=..,wom=..,observer=euler|zoh,delay=PERIODS (observer input delay)");
   app->add_option("--ilc", flags.ilc, "ILC gains: kcp=..,kcd=..,forgetting=..,q=HZ,lead=SAMPLES");
   app->add_option("--pidccc", flags.pidccc, "PID cross-coupling gains: kp=..,ki=..,kd=..");
   app->add_option("--pid", flags.pid, "Per-axis PID gains: kp=..,ki=..,kd=..");
   app->add_option("--estimator", flags.estimator, "Contour-error estimator of the controller: curvature | tangent");
+  app->add_option("--task-space", flags.task_space, "Task-space controllers (gtcf-*): trajectory initialization filter, init_filter=on|off,wc=8,wm=1 (rad/s)");
+  app->add_option("--initial-position", flags.initial_position, "Where the axes rest at t = 0, x=..,y=.. (default: the trajectory's start)");
   app->add_option("--sensor", flags.sensor, "Position sensor: resolution=0.5um,noise=0.1um");
   app->add_option("--json", flags.json_path, "Write all iteration metrics as JSON");
   app->add_flag("--curve", flags.curve, "Print e_sum per iteration (the learning curve)");

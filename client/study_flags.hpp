@@ -15,7 +15,8 @@ struct StudyFlags {
   std::string spec_file;
   std::string trajectory, plant, controllers, delay, uplink_delay, loss, uplink_loss;
   std::string sample_period, duration, deadline, compute_delay, divergence_limit, command_limit;
-  std::string adrc, ilc, pidccc, pid, estimator, sensor;
+  std::string adrc, adrc_y, gtcf_adrc, ilc, pidccc, pid, estimator, sensor, task_space,
+      initial_position;
   int iterations = 0;
   long long seed = -1;
   std::string clock;

@@ -17,9 +17,13 @@ const netmc::v1::IterationMetrics& last(const RunOutcome& outcome) {
   return outcome.result.iterations(outcome.result.iterations_size() - 1);
 }
 
-const PaperRow* paper_row(const StudyPlan& plan, const std::string& controller) {
-  for (const auto& row : plan.paper) {
-    if (row.controller == controller) return &row;
+// The paper's row for a run: the one named like the run (e.g. "gtcf-sarc (D)"), else the one
+// of its controller.
+const PaperRow* paper_row(const StudyPlan& plan, const netmc::v1::RunResult& run) {
+  for (const std::string* key : {&run.label(), &run.controller()}) {
+    for (const auto& row : plan.paper) {
+      if (row.controller == *key) return &row;
+    }
   }
   return nullptr;
 }
@@ -43,9 +47,45 @@ void print_steady_table(std::ostream& out, const StudyPlan& plan,
     }
     fmt::print(out, "{:<18} {:>17.2f} {:>17.2f} {:>10.3f}  {:>11.2f} {:>11.2f}", outcome.result.label(),
                m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6,
-               m.e_rms_steady_m() / first.e_rms_steady_m(), m.command_rms(0), m.command_rms(1));
-    if (const PaperRow* row = paper_row(plan, outcome.result.controller())) {
+               m.e_rms_steady_m() / first.e_rms_steady_m(), m.command_rms_steady(0), m.command_rms_steady(1));
+    if (const PaperRow* row = paper_row(plan, outcome.result)) {
       fmt::print(out, "  {:>16.2f} {:>16.2f}", row->e_max_m * 1e6, row->e_sum_m * 1e6);
+    }
+    fmt::print(out, "\n");
+  }
+}
+
+bool delays_differ(const std::vector<RunOutcome>& outcomes) {
+  return std::any_of(outcomes.begin(), outcomes.end(), [&](const RunOutcome& o) {
+    return o.result.delay() != outcomes.front().result.delay();
+  });
+}
+
+// A sweep over loop delays: one row per run label, one column per delay, steady RMS / max (um).
+void print_steady_sweep(std::ostream& out, const std::vector<RunOutcome>& outcomes) {
+  std::vector<std::string> labels, delays;
+  for (const auto& o : outcomes) {
+    if (std::find(labels.begin(), labels.end(), o.result.label()) == labels.end()) labels.push_back(o.result.label());
+    if (std::find(delays.begin(), delays.end(), o.result.delay()) == delays.end()) delays.push_back(o.result.delay());
+  }
+  std::size_t width = 3;
+  for (const auto& label : labels) width = std::max(width, label.size());
+  fmt::print(out, "steady contour error RMS / max [um] by loop delay (downlink)\n{:<{}}", "run", width);
+  for (const auto& delay : delays) fmt::print(out, " {:>24}", delay);
+  fmt::print(out, "\n");
+  for (const auto& label : labels) {
+    fmt::print(out, "{:<{}}", label, width);
+    for (const auto& delay : delays) {
+      const auto found = std::find_if(outcomes.begin(), outcomes.end(), [&](const RunOutcome& o) {
+        return o.result.label() == label && o.result.delay() == delay;
+      });
+      std::string cell = "-";
+      if (found != outcomes.end()) {
+        const auto& m = last(*found);
+        cell = m.diverged() ? fmt::format("unstable at {:.2f} s", m.diverged_at_s())
+                            : fmt::format("{:.2f} / {:.2f}", m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6);
+      }
+      fmt::print(out, " {:>24}", cell);
     }
     fmt::print(out, "\n");
   }
@@ -58,10 +98,15 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
   if (outcomes.empty()) return;
   if (plan.steady_metrics) {
     const auto& first = outcomes.front().result;
+    const bool sweep = delays_differ(outcomes);
     fmt::print(out, "{}\ntrajectory {} | plant {} | delay {} | h = {} ms | seed {}\n\n", plan.title,
-               first.trajectory(), first.plant(), first.delay(), first.sample_period_s() * 1e3,
-               first.seed());
-    print_steady_table(out, plan, outcomes);
+               first.trajectory(), first.plant(), sweep ? "by column" : first.delay(),
+               first.sample_period_s() * 1e3, first.seed());
+    if (sweep) {
+      print_steady_sweep(out, outcomes);
+    } else {
+      print_steady_table(out, plan, outcomes);
+    }
     return;
   }
   const auto& first = outcomes.front().result;
@@ -88,7 +133,7 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
                m.e_sum_m() / reference.e_sum_m(), m.tau_mean_s() * 1e3, m.tau_p99_s() * 1e3,
                m.tau_max_s() * 1e3);
     if (with_paper) {
-      if (const PaperRow* row = paper_row(plan, outcome.result.controller())) {
+      if (const PaperRow* row = paper_row(plan, outcome.result)) {
         fmt::print(out, "  {:>12.4f} {:>12.4f}", row->e_max_m * 1e3, row->e_sum_m * 1e3);
       }
     }
@@ -96,7 +141,7 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
   }
   fmt::print(out, "\nlast iteration of each run; ratios against the first row ({})", outcomes.front().result.label());
   if (with_paper) {
-    const auto* adrc = paper_row(plan, outcomes.front().result.controller());
+    const auto* adrc = paper_row(plan, outcomes.front().result);
     const auto* best = &plan.paper.back();
     if (adrc && adrc == &plan.paper.front()) {
       fmt::print(out, "; {}: {} e_max/ref {:.3f}, e_sum/ref {:.3f}", plan.paper_source,

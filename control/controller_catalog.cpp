@@ -6,7 +6,8 @@ namespace netmc::control {
 namespace {
 
 std::string usage() {
-  return "expected gtcf-sarc, ltcf-sarc, AXIS or AXIS+COMPENSATOR with AXIS one of adrc, pid and "
+  return "expected gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, gtcf-adrc, AXIS or "
+         "AXIS+COMPENSATOR with AXIS one of adrc, pid and "
          "COMPENSATOR one of pidccc, ilccc";
 }
 
@@ -43,7 +44,10 @@ ContouringController make_contouring_controller(std::string_view name,
     throw std::invalid_argument("controller: unknown name '" + std::string(name) + "' (" +
                                 usage() + ")");
   }
-  auto y_axis = x_axis->clone();
+  std::unique_ptr<AxisController> y_axis =
+      axis_name == "adrc" && settings.adrc_y
+          ? std::make_unique<AdrcController>(*settings.adrc_y, sample_period_s)
+          : x_axis->clone();
   return ContouringController(std::move(x_axis), std::move(y_axis),
                               make_contour_error_estimator(settings.estimator),
                               std::move(compensator));
@@ -53,10 +57,22 @@ std::unique_ptr<ContourController> make_contour_controller(std::string_view name
                                                            const ControllerSettings& settings,
                                                            double sample_period_s,
                                                            const ReferenceTrajectory& trajectory) {
+  const auto& filter = settings.initialization_filter;
   if (name == "gtcf-sarc") {
-    return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, make_task_frame(trajectory));
+    return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, make_task_frame(trajectory), filter);
   }
-  if (name == "ltcf-sarc") return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, nullptr);
+  if (name == "gtcf-adrc") {
+    return std::make_unique<TaskSpaceAdrc>(settings.gtcf_adrc, sample_period_s, make_task_frame(trajectory));
+  }
+  if (name == "ltcf-sarc") return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, nullptr, filter);
+  if (name == "gtcf-darc") {
+    return std::make_unique<TaskSpaceDarc>(settings.darc, sample_period_s, make_task_frame(trajectory), filter);
+  }
+  if (name == "ltcf-darc") return std::make_unique<TaskSpaceDarc>(settings.darc, sample_period_s, nullptr, filter);
+  if (name == "gtcf-diarc") {
+    return std::make_unique<TaskSpaceDiarc>(settings.diarc, sample_period_s, make_task_frame(trajectory), filter);
+  }
+  if (name == "ltcf-diarc") return std::make_unique<TaskSpaceDiarc>(settings.diarc, sample_period_s, nullptr, filter);
   return std::make_unique<ContouringController>(make_contouring_controller(name, settings, sample_period_s));
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Contouring controllers chosen by name: AXIS[+COMPENSATOR], e.g. "adrc", "adrc+ilccc".
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -10,6 +11,9 @@
 #include "control/iterative_learning_cross_coupling.hpp"
 #include "control/pid_axis_controller.hpp"
 #include "control/pid_cross_coupling.hpp"
+#include "control/task_space_adrc.hpp"
+#include "control/task_space_darc.hpp"
+#include "control/task_space_diarc.hpp"
 #include "control/task_space_sarc.hpp"
 
 namespace netmc::control {
@@ -17,10 +21,17 @@ namespace netmc::control {
 // Defaults are paper 001's gains (sec. 1.6 of the digest).
 struct ControllerSettings {
   AdrcGains adrc;
+  // The y axis's ADRC when it differs from the x axis's (axes of different mass: b0 = 1/M).
+  std::optional<AdrcGains> adrc_y;
   PidAxisGains pid;
   PidCrossCouplingGains pidccc;
   IterativeLearningGains ilccc;
   SarcGains sarc;
+  GtcfAdrcGains gtcf_adrc;
+  DarcGains darc;
+  DiarcGains diarc;
+  // Thesis eq. 2-67, for the task-space controllers in the global frame (gtcf-*).
+  InitializationFilterSettings initialization_filter;
   std::string estimator = "curvature";
 };
 
@@ -32,7 +43,8 @@ ContouringController make_contouring_controller(std::string_view name,
                                                 double sample_period_s);
 
 // Every controller by name: AXIS[+COMPENSATOR] as above, or a task-space contouring controller
-// gtcf-sarc / ltcf-sarc (thesis ch. 2) on the contour of `trajectory`.
+// gtcf-sarc / ltcf-sarc (thesis ch. 2), gtcf-darc / ltcf-darc / gtcf-diarc / ltcf-diarc
+// (thesis ch. 3) or gtcf-adrc (task-space ADRC) on the contour of `trajectory`.
 std::unique_ptr<ContourController> make_contour_controller(std::string_view name,
                                                            const ControllerSettings& settings,
                                                            double sample_period_s,

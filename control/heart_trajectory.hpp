@@ -21,6 +21,8 @@ class HeartTrajectory final : public ReferenceTrajectory {
   double duration_s() const override;
   // Exact distance by global search (no closed form); positive outside the heart.
   double contour_error(const Eigen::Vector2d& point) const override;
+  // The two cusps: the top (phi = 0, also the end) and the bottom tip (phi = pi).
+  std::vector<double> corner_times_s() const override { return {0.0, 0.5 * p_.period_s}; }
   std::unique_ptr<ReferenceTrajectory> clone() const override;
   std::string describe() const override;
 

@@ -133,6 +133,13 @@ double PolylineTrajectory::contour_error(const Eigen::Vector2d& point) const {
   return orientation_ * (offset.dot(normal) >= 0.0 ? best : -best);
 }
 
+std::vector<double> PolylineTrajectory::corner_times_s() const {
+  std::vector<double> times;
+  if (closed_) times.push_back(0.0);
+  times.insert(times.end(), start_time_.begin() + 1, start_time_.end() - 1);
+  return times;
+}
+
 std::unique_ptr<ReferenceTrajectory> PolylineTrajectory::clone() const {
   return std::make_unique<PolylineTrajectory>(*this);
 }

@@ -27,6 +27,8 @@ class PolylineTrajectory final : public ReferenceTrajectory {
   // Closed form: distance to the nearest segment. Closed polylines: positive outside; open ones:
   // positive on the right of travel (at a corner, the side of the bisector of the two normals).
   double contour_error(const Eigen::Vector2d& point) const override;
+  // The inner vertices (and the start of a closed polyline, where it ends too).
+  std::vector<double> corner_times_s() const override;
   std::unique_ptr<ReferenceTrajectory> clone() const override;
   std::string describe() const override;
 

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace netmc::control {
 
@@ -25,6 +26,12 @@ class ReferenceTrajectory {
   // Exact signed distance from `point` to the whole contour: the ground truth for metrics.
   // Closed curves: positive outside. Open curves: positive on the right of the direction of travel.
   virtual double contour_error(const Eigen::Vector2d& point) const = 0;
+  // Times of the sharp corners of the contour (cusps, vertices): where its tangent turns by a
+  // finite angle and local foot-point iterations cannot cross. Empty for a smooth contour.
+  virtual std::vector<double> corner_times_s() const { return {}; }
+  // The motion whose contour this one traces (itself, unless it only re-times another motion,
+  // as HaltedTrajectory does): task frames are built from its closed form.
+  virtual const ReferenceTrajectory& geometry() const { return *this; }
   virtual std::unique_ptr<ReferenceTrajectory> clone() const = 0;
   virtual std::string describe() const = 0;
 };

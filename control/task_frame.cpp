@@ -45,8 +45,8 @@ std::vector<double> arc_table(double span, Speed&& speed) {
 
 }  // namespace
 
-CircleTaskFrame::CircleTaskFrame(const Eigen::Vector2d& center, double radius)
-    : center_(center), radius_(require_positive(radius, "circle r")) {}
+CircleTaskFrame::CircleTaskFrame(const Eigen::Vector2d& center, double radius, bool clockwise)
+    : center_(center), radius_(require_positive(radius, "circle r")), clockwise_(clockwise) {}
 
 double CircleTaskFrame::perimeter_m() const { return kTwoPi * radius_; }
 
@@ -57,8 +57,10 @@ TaskCoordinates CircleTaskFrame::at(const Eigen::Vector2d& q) const {
   if (rho <= 0.0) throw std::invalid_argument("circle task frame: undefined at the centre");
   TaskCoordinates r;
   r.rc = rho - radius_;
-  r.rm = radius_ * wrap_angle(std::atan2(d.y(), d.x()));
-  r.jacobian << d.x() / rho, d.y() / rho, -radius_ * d.y() / (rho * rho), radius_ * d.x() / (rho * rho);
+  const double angle = std::atan2(d.y(), d.x());
+  r.rm = radius_ * wrap_angle(clockwise_ ? -angle : angle);
+  const double along = clockwise_ ? -radius_ : radius_;
+  r.jacobian << d.x() / rho, d.y() / rho, -along * d.y() / (rho * rho), along * d.x() / (rho * rho);
   return r;
 }
 
@@ -184,9 +186,11 @@ TaskCoordinates NumericalTaskFrame::coordinates(const Eigen::Vector2d& q, const 
   return r;
 }
 
-std::shared_ptr<const TaskFrame> make_task_frame(const ReferenceTrajectory& trajectory) {
-  if (const auto* circle = dynamic_cast<const CircleTrajectory*>(&trajectory); circle && !circle->parameters().clockwise) {
-    return std::make_shared<CircleTaskFrame>(circle->parameters().center, circle->parameters().radius_m);
+std::shared_ptr<const TaskFrame> make_task_frame(const ReferenceTrajectory& motion) {
+  const ReferenceTrajectory& trajectory = motion.geometry();
+  if (const auto* circle = dynamic_cast<const CircleTrajectory*>(&trajectory)) {
+    const auto& p = circle->parameters();
+    return std::make_shared<CircleTaskFrame>(p.center, p.radius_m, p.clockwise);
   }
   if (const auto* ellipse = dynamic_cast<const EllipseTrajectory*>(&trajectory); ellipse && !ellipse->parameters().clockwise) {
     const auto& p = ellipse->parameters();

@@ -33,15 +33,18 @@ class TaskFrame {
 };
 
 // rc = |q - c| - R, rm = R atan2 (counter-clockwise arc length), J = [e_r; e_theta * R/rho].
+// Clockwise: rm = -R atan2 and the second row of J negated, so that rm grows along the motion
+// (digest 2.12 [A], thesis case B).
 class CircleTaskFrame final : public TaskFrame {
  public:
-  CircleTaskFrame(const Eigen::Vector2d& center, double radius);
+  CircleTaskFrame(const Eigen::Vector2d& center, double radius, bool clockwise = false);
   TaskCoordinates at(const Eigen::Vector2d& q) const override;
   double perimeter_m() const override;
 
  private:
   Eigen::Vector2d center_;
   double radius_;
+  bool clockwise_;
 };
 
 // rc of (2-42); rm = s(nu) of the point projected onto the contour along grad f (2-21), with the

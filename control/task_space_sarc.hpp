@@ -2,17 +2,12 @@
 // Simple adaptive robust contouring control in task coordinates (thesis, paper 000, eq. 2-50 to
 // 2-60): s = e_dot + Lambda e, model compensation M q_eq'' + B q' + A S_f(q'), the lumped
 // uncertainty F_l estimated with projection into |F_l| <= F_M, robust feedback -J^T K_s s.
-// In the global task frame (GTCF) e = r(q) - r_d with r = [rc, rm] and J = dr/dq; in the local
-// task frame (LTCF, eq. 2-61..2-64) e = T(alpha) (q - q_d) and J = T, the frame of the tangent at
-// the desired point. Velocity is differenced from measured positions (as on the thesis stage),
-// with the second-order backward difference: the plain one lags half a period, and on a fast
-// curve its direction then leans off the tangent and reads as a contour velocity. q_eq'' is the
-// difference of q_eq' over one period.
+// e, s, J and q_eq'' in the global (GTCF) or local (LTCF) task frame: TaskSpaceSlidingVariable.
 
 #include <memory>
 
 #include "control/contour_controller.hpp"
-#include "control/task_frame.hpp"
+#include "control/task_space_sliding_variable.hpp"
 
 namespace netmc::control {
 
@@ -29,8 +24,10 @@ struct SarcGains {
 
 class TaskSpaceSarc final : public ContourController {
  public:
-  // Global frame: `frame` of the contour. Local frame: frame == nullptr.
-  TaskSpaceSarc(const SarcGains& gains, double sample_period_s, std::shared_ptr<const TaskFrame> frame);
+  // Global frame: `frame` of the contour. Local frame: frame == nullptr. The initialization
+  // filter (eq. 2-67) needs the global frame.
+  TaskSpaceSarc(const SarcGains& gains, double sample_period_s, std::shared_ptr<const TaskFrame> frame,
+                const InitializationFilterSettings& filter = {});
 
   void begin_iteration(const Eigen::Vector2d& initial_position, std::size_t samples) override;
   ContouringCycle step(std::size_t cycle, const ReferencePoint& reference,
@@ -42,14 +39,8 @@ class TaskSpaceSarc final : public ContourController {
  private:
   SarcGains gains_;
   double h_;
-  std::shared_ptr<const TaskFrame> frame_;
-  Eigen::Vector2d previous_position_ = Eigen::Vector2d::Zero();
-  Eigen::Vector2d earlier_position_ = Eigen::Vector2d::Zero();  // two samples back
-  int samples_seen_ = 0;
-  Eigen::Vector2d previous_equivalent_velocity_ = Eigen::Vector2d::Zero();
+  TaskSpaceSlidingVariable sliding_;
   Eigen::Vector2d estimate_ = Eigen::Vector2d::Zero();  // F_l hat
-  double desired_rm_ = 0.0;  // rm of the previous reference, where the next is sought
-  bool first_ = true;
 };
 
 }  // namespace netmc::control

@@ -12,6 +12,7 @@
 #include "control/cubic_spline_curve.hpp"
 #include "control/ellipse_trajectory.hpp"
 #include "control/feed_rate_trajectory.hpp"
+#include "control/halted_trajectory.hpp"
 #include "control/line_trajectory.hpp"
 #include "control/lissajous_trajectory.hpp"
 #include "control/polyline_trajectory.hpp"
@@ -40,8 +41,7 @@ control::FeedRateLimits build_feed(const netmc::v1::FeedRate& f) {
   return limits;
 }
 
-std::shared_ptr<const control::ReferenceTrajectory> build_trajectory(
-    const netmc::v1::Trajectory& t) {
+std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1::Trajectory& t) {
   switch (t.shape_case()) {
     case netmc::v1::Trajectory::kCircle: {
       const auto& c = t.circle();
@@ -120,6 +120,14 @@ std::shared_ptr<const control::ReferenceTrajectory> build_trajectory(
       "trajectory: missing (expected circle, ellipse, line, lissajous, polyline or spline)");
 }
 
+std::shared_ptr<const control::ReferenceTrajectory> build_trajectory(
+    const netmc::v1::Trajectory& t) {
+  auto motion = build_shape(t);
+  if (!t.has_halt()) return motion;
+  return std::make_shared<control::HaltedTrajectory>(std::move(motion), t.halt().at_s(),
+                                                     t.halt().duration_s());
+}
+
 std::unique_ptr<netsim::DelayModel> build_delay(const DelayProfile& d) {
   switch (d.kind_case()) {
     case DelayProfile::KIND_NOT_SET:
@@ -192,21 +200,43 @@ sim::LinkProfile build_link(const netmc::v1::LinkProfile& link, const std::strin
   return out;
 }
 
+control::Discretization build_discretization(const std::string& observer, control::Discretization fallback,
+                                             const std::string& field) {
+  if (observer.empty()) return fallback;
+  if (observer == "euler") return control::Discretization::forward_euler;
+  if (observer == "zoh") return control::Discretization::zero_order_hold;
+  throw std::invalid_argument(field + ": expected 'euler' or 'zoh', got '" + observer + "'");
+}
+
+// The fields set in `a` over `base`.
+control::AdrcGains build_adrc(const netmc::v1::AdrcGains& a, control::AdrcGains base,
+                              const std::string& field) {
+  if (a.has_r0()) base.td_speed_factor = a.r0();
+  if (a.has_w0()) base.observer_bandwidth = a.w0();
+  if (a.has_b0()) base.input_gain = a.b0();
+  if (a.has_kp()) base.kp = a.kp();
+  if (a.has_kd()) base.kd = a.kd();
+  base.observer_discretization =
+      build_discretization(a.observer(), base.observer_discretization, field + ".observer");
+  if (a.observer_sees_sent_command()) base.observer_sees_sent_command = true;
+  return base;
+}
+
 control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   control::ControllerSettings s;
-  const auto& a = c.adrc();
-  if (a.has_r0()) s.adrc.td_speed_factor = a.r0();
-  if (a.has_w0()) s.adrc.observer_bandwidth = a.w0();
-  if (a.has_b0()) s.adrc.input_gain = a.b0();
-  if (a.has_kp()) s.adrc.kp = a.kp();
-  if (a.has_kd()) s.adrc.kd = a.kd();
-  if (a.observer() == "zoh") {
-    s.adrc.observer_discretization = control::Discretization::zero_order_hold;
-  } else if (!a.observer().empty() && a.observer() != "euler") {
-    throw std::invalid_argument("controller.adrc.observer: expected 'euler' or 'zoh', got '" +
-                                a.observer() + "'");
+  s.adrc = build_adrc(c.adrc(), s.adrc, "controller.adrc");
+  if (c.has_adrc_y()) s.adrc_y = build_adrc(c.adrc_y(), s.adrc, "controller.adrc_y");
+  const auto& g = c.gtcf_adrc();
+  if (g.has_wc()) s.gtcf_adrc.loop_bandwidth[0] = g.wc();
+  if (g.has_wm()) s.gtcf_adrc.loop_bandwidth[1] = g.wm();
+  if (g.has_woc()) s.gtcf_adrc.observer_bandwidth[0] = g.woc();
+  if (g.has_wom()) s.gtcf_adrc.observer_bandwidth[1] = g.wom();
+  s.gtcf_adrc.discretization =
+      build_discretization(g.observer(), s.gtcf_adrc.discretization, "controller.gtcf_adrc.observer");
+  if (g.observer_input_delay() > 100000) {
+    throw std::invalid_argument("controller.gtcf_adrc.observer_input_delay: expected at most 100000 periods");
   }
-  s.adrc.observer_sees_sent_command = a.observer_sees_sent_command();
+  s.gtcf_adrc.observer_input_delay = g.observer_input_delay();
   if (c.pid().has_kp()) s.pid.kp = c.pid().kp();
   if (c.pid().has_ki()) s.pid.ki = c.pid().ki();
   if (c.pid().has_kd()) s.pid.kd = c.pid().kd();
@@ -220,6 +250,10 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   if (i.has_q_cutoff_hz()) s.ilccc.q_cutoff_hz = i.q_cutoff_hz();
   if (i.has_lead_samples()) s.ilccc.lead_samples = i.lead_samples();
   if (!c.estimator().empty()) s.estimator = c.estimator();
+  const auto& t = c.task_space();
+  s.initialization_filter.enabled = t.initialization_filter();
+  if (t.has_filter_wc()) s.initialization_filter.contour_bandwidth = t.filter_wc();
+  if (t.has_filter_wm()) s.initialization_filter.tangential_bandwidth = t.filter_wm();
   return s;
 }
 
@@ -272,6 +306,9 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   job.evaluation_start_s = spec.evaluation_start_s();
   if (spec.command_limit() != 0.0) job.command_limit = spec.command_limit();
   if (spec.divergence_limit_m() != 0.0) job.divergence_limit_m = spec.divergence_limit_m();
+  if (spec.has_initial_position()) {
+    job.initial_position = Eigen::Vector2d(spec.initial_position().x_m(), spec.initial_position().y_m());
+  }
   job.validate();
   // Construct the controller once here so a bad name or gain is reported before anything runs.
   in_field("controller", [&] {
@@ -346,6 +383,7 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
     out.add_tracking_rms_m(m.tracking_rms_m[axis]);
     out.add_tracking_max_m(m.tracking_max_m[axis]);
     out.add_command_rms(m.command_rms[axis]);
+    out.add_command_rms_steady(m.command_rms_steady[axis]);
   }
   out.set_deadline_misses(static_cast<std::uint32_t>(m.deadline_misses));
   out.set_lost_feedback(static_cast<std::uint32_t>(m.lost_feedback));

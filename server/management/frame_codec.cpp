@@ -3,28 +3,44 @@
 namespace netmc::management {
 
 std::string encode_frame(const google::protobuf::MessageLite& message) {
-  const std::string payload = message.SerializeAsString();
-  if (payload.size() > kMaxFrameBytes) throw FrameError("frame: message larger than 16 MiB");
-  const auto size = static_cast<std::uint32_t>(payload.size());
+  const std::size_t size = message.ByteSizeLong();
+  if (size > kMaxFrameBytes) {
+    throw FrameError("frame: message of " + std::to_string(size) + " bytes exceeds the 16 MiB limit");
+  }
+  const auto length = static_cast<std::uint32_t>(size);
   std::string frame;
-  frame.reserve(4 + payload.size());
-  for (int shift = 24; shift >= 0; shift -= 8) frame.push_back(static_cast<char>((size >> shift) & 0xFF));
-  frame += payload;
+  frame.reserve(kFrameHeaderBytes + size);
+  for (int shift = 24; shift >= 0; shift -= 8) {
+    frame.push_back(static_cast<char>((length >> shift) & 0xFFu));
+  }
+  if (!message.AppendToString(&frame)) throw FrameError("frame: cannot serialize the message");
   return frame;
 }
 
-void FrameDecoder::feed(const char* data, std::size_t size) { buffer_.append(data, size); }
+void FrameDecoder::feed(const char* data, std::size_t size) {
+  if (start_ > 0 && start_ == buffer_.size()) {  // everything consumed: start over cheaply
+    buffer_.clear();
+    start_ = 0;
+  }
+  buffer_.append(data, size);
+}
 
 std::optional<std::string> FrameDecoder::next() {
-  if (buffer_.size() < 4) return std::nullopt;
-  std::uint32_t size = 0;
-  for (int i = 0; i < 4; ++i) size = (size << 8) | static_cast<unsigned char>(buffer_[static_cast<std::size_t>(i)]);
-  if (size > kMaxFrameBytes) {
-    throw FrameError("frame: length " + std::to_string(size) + " exceeds the 16 MiB limit");
+  if (buffered() < kFrameHeaderBytes) return std::nullopt;
+  std::uint32_t length = 0;
+  for (std::size_t i = 0; i < kFrameHeaderBytes; ++i) {
+    length = (length << 8) | static_cast<unsigned char>(buffer_[start_ + i]);
   }
-  if (buffer_.size() < 4 + static_cast<std::size_t>(size)) return std::nullopt;
-  std::string payload = buffer_.substr(4, size);
-  buffer_.erase(0, 4 + static_cast<std::size_t>(size));
+  if (length > kMaxFrameBytes) {
+    throw FrameError("frame: length " + std::to_string(length) + " exceeds the 16 MiB limit");
+  }
+  if (buffered() < kFrameHeaderBytes + length) return std::nullopt;
+  std::string payload = buffer_.substr(start_ + kFrameHeaderBytes, length);
+  start_ += kFrameHeaderBytes + length;
+  if (start_ >= buffer_.size() / 2) {  // drop consumed bytes once they are half the buffer
+    buffer_.erase(0, start_);
+    start_ = 0;
+  }
   return payload;
 }
 

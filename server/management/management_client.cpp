@@ -1,73 +1,143 @@
 #include "server/management/management_client.hpp"
 
 #include <array>
+#include <cctype>
+#include <stdexcept>
 
 namespace netmc::management {
 
 namespace asio = boost::asio;
 using asio::ip::tcp;
 
+namespace {
+
+struct HostPort {
+  std::string host;
+  std::string port;
+};
+
+HostPort parse_host_port(const std::string& text) {
+  const auto bad = [&text] {
+    return std::invalid_argument("--server: expected HOST:PORT, got '" + text + "'");
+  };
+  const auto colon = text.rfind(':');
+  if (colon == std::string::npos) throw bad();
+  std::string host = text.substr(0, colon);
+  const std::string port = text.substr(colon + 1);
+  if (host.size() >= 2 && host.front() == '[' && host.back() == ']') {
+    host = host.substr(1, host.size() - 2);  // [IPv6]:PORT
+  } else if (host.find(':') != std::string::npos) {
+    throw bad();  // a bare IPv6 literal is ambiguous
+  }
+  if (host.empty() || port.empty() || port.size() > 5 ||
+      port.find_first_not_of("0123456789") != std::string::npos) {
+    throw bad();
+  }
+  const int number = std::stoi(port);
+  if (number < 1 || number > 65535) throw bad();
+  return {host, port};
+}
+
+// Boost's messages are strerror's ("Connection refused"); ours continue a sentence.
+std::string describe(const boost::system::error_code& error) {
+  std::string text = error.message();
+  if (!text.empty()) text.front() = static_cast<char>(std::tolower(static_cast<unsigned char>(text.front())));
+  return text;
+}
+
+// Runs io until its work is done or `timeout` passes; then cancels what is left via `cancel`
+// and runs the cancelled handlers to completion. Returns true when it timed out.
+template <typename Cancel>
+bool run_with_timeout(asio::io_context& io, std::chrono::milliseconds timeout, Cancel cancel) {
+  io.restart();
+  io.run_for(timeout);
+  const bool timed_out = !io.stopped();
+  if (timed_out) {
+    cancel();
+    io.run();
+  }
+  io.restart();
+  return timed_out;
+}
+
+}  // namespace
+
 ManagementClient::ManagementClient(const std::string& host_port,
                                    std::chrono::milliseconds connect_timeout)
     : name_(host_port), socket_(io_) {
-  const auto colon = host_port.rfind(':');
-  if (colon == std::string::npos || colon == 0 || colon + 1 == host_port.size() ||
-      host_port.find_first_not_of("0123456789", colon + 1) != std::string::npos) {
-    throw std::invalid_argument("--server: expected HOST:PORT, got '" + host_port + "'");
-  }
-  tcp::resolver resolver(io_);
+  const HostPort target = parse_host_port(host_port);
+
   boost::system::error_code error;
-  const auto endpoints = resolver.resolve(host_port.substr(0, colon), host_port.substr(colon + 1), error);
-  if (error) throw std::runtime_error("server " + name_ + ": " + error.message());
-  boost::system::error_code connect_error = asio::error::timed_out;
-  asio::async_connect(socket_, endpoints,
-                      [&](const boost::system::error_code& result, const tcp::endpoint&) {
-                        connect_error = result;
-                      });
-  io_.run_for(connect_timeout);
-  if (!io_.stopped()) {
-    socket_.close(error);
-    io_.run();
+  tcp::resolver resolver(io_);
+  tcp::resolver::results_type endpoints;
+  resolver.async_resolve(target.host, target.port,
+                         [&](const boost::system::error_code& result, tcp::resolver::results_type found) {
+                           error = result;
+                           endpoints = std::move(found);
+                         });
+  if (run_with_timeout(io_, connect_timeout, [&] { resolver.cancel(); })) {
+    throw std::runtime_error("server " + name_ + ": cannot resolve '" + target.host + "' within " +
+                             std::to_string(connect_timeout.count()) + " ms");
   }
-  io_.restart();
-  if (connect_error) throw std::runtime_error("server " + name_ + ": " + connect_error.message());
+  if (error) throw std::runtime_error("server " + name_ + ": cannot resolve '" + target.host + "': " + describe(error));
+
+  asio::async_connect(socket_, endpoints,
+                      [&](const boost::system::error_code& result, const tcp::endpoint&) { error = result; });
+  if (run_with_timeout(io_, connect_timeout, [&] {
+        boost::system::error_code ignored;
+        socket_.close(ignored);
+      })) {
+    throw std::runtime_error("server " + name_ + ": no connection within " +
+                             std::to_string(connect_timeout.count()) + " ms");
+  }
+  if (error) throw std::runtime_error("server " + name_ + ": " + describe(error));
+  socket_.set_option(tcp::no_delay(true), error);  // small frames: do not wait for Nagle
 }
 
 void ManagementClient::send(const netmc::v1::Request& request) {
   boost::system::error_code error;
   asio::write(socket_, asio::buffer(encode_frame(request)), error);
-  if (error) throw std::runtime_error("server " + name_ + ": " + error.message());
+  if (error) throw std::runtime_error("server " + name_ + ": cannot send: " + describe(error));
 }
 
 std::optional<netmc::v1::Response> ManagementClient::receive(std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   std::array<char, 8192> buffer{};
   while (true) {
-    if (auto payload = decoder_.next()) {
+    std::optional<std::string> payload;
+    try {
+      payload = decoder_.next();
+    } catch (const FrameError& error) {
+      throw std::runtime_error("server " + name_ + ": " + error.what());
+    }
+    if (payload) {
       netmc::v1::Response response;
       if (!response.ParseFromString(*payload)) {
-        throw std::runtime_error("server " + name_ + ": malformed response");
+        throw std::runtime_error("server " + name_ + ": frame of " + std::to_string(payload->size()) +
+                                 " bytes is not a netmc.v1.Response");
       }
       return response;
     }
-    const auto left = deadline - std::chrono::steady_clock::now();
-    if (left <= std::chrono::steady_clock::duration::zero()) return std::nullopt;
-    boost::system::error_code read_error = asio::error::timed_out;
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left <= std::chrono::milliseconds::zero()) return std::nullopt;
+
+    boost::system::error_code error;
     std::size_t received = 0;
-    socket_.async_read_some(asio::buffer(buffer),
-                            [&](const boost::system::error_code& result, std::size_t size) {
-                              read_error = result;
-                              received = size;
-                            });
-    io_.run_for(std::chrono::duration_cast<std::chrono::milliseconds>(left));
-    if (!io_.stopped()) {
-      socket_.cancel();  // timed out: finish the cancelled read, keep the connection
-      io_.run();
-    }
-    io_.restart();
-    if (read_error == asio::error::operation_aborted) return std::nullopt;
-    if (read_error) throw std::runtime_error("server " + name_ + ": connection closed (" + read_error.message() + ")");
+    socket_.async_read_some(asio::buffer(buffer), [&](const boost::system::error_code& result, std::size_t size) {
+      error = result;
+      received = size;
+    });
+    // On timeout, cancel the read but keep the connection; bytes that raced in are kept.
+    run_with_timeout(io_, left, [&] {
+      boost::system::error_code ignored;
+      socket_.cancel(ignored);
+    });
     decoder_.feed(buffer.data(), received);
+    if (error == asio::error::operation_aborted) continue;  // the deadline check returns nullopt
+    if (error == asio::error::eof) {
+      throw std::runtime_error("server " + name_ + ": connection closed by the server");
+    }
+    if (error) throw std::runtime_error("server " + name_ + ": connection lost: " + describe(error));
   }
 }
 

@@ -1,5 +1,6 @@
 #pragma once
-// Synchronous client of the management endpoint, for the CLI: every call has a timeout.
+// Synchronous client of the management endpoint, for the CLI: connecting and receiving have
+// timeouts; errors are exceptions whose message names the server.
 
 #include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange unincluded
 
@@ -16,17 +17,21 @@ namespace netmc::management {
 
 class ManagementClient {
  public:
-  // host_port: "HOST:PORT"; throws std::invalid_argument for a malformed one and
-  // std::runtime_error naming the server when it cannot connect.
+  // host_port: "HOST:PORT" (HOST a name or an IP address, "[v6]:PORT" for IPv6 literals).
+  // Throws std::invalid_argument("--server: expected HOST:PORT, got '…'") for a malformed one
+  // and std::runtime_error("server HOST:PORT: …") when it cannot resolve or connect in time.
   ManagementClient(const std::string& host_port, std::chrono::milliseconds connect_timeout);
 
+  // Sends one framed request; throws std::runtime_error naming the server when it fails.
   void send(const netmc::v1::Request& request);
-  // The next response, or nullopt when none arrives within `timeout`; throws
-  // std::runtime_error when the server closes the connection.
+
+  // The next response, or nullopt when none arrives within `timeout` (the connection stays
+  // usable). Throws std::runtime_error naming the server when the server has closed the
+  // connection or sent a malformed frame.
   std::optional<netmc::v1::Response> receive(std::chrono::milliseconds timeout);
 
  private:
-  std::string name_;
+  std::string name_;  // "host:port", for messages
   boost::asio::io_context io_;
   boost::asio::ip::tcp::socket socket_;
   FrameDecoder decoder_;

@@ -1,104 +1,87 @@
 #include "server/management/management_server.hpp"
 
+#include <chrono>
+#include <vector>
+
 namespace netmc::management {
 
 namespace asio = boost::asio;
 using asio::ip::tcp;
 
-Session::Session(tcp::socket socket, Dispatch dispatch)
-    : socket_(std::move(socket)), dispatch_(std::move(dispatch)) {}
+// Shared with the pending asynchronous operations, so none of them refers to the server object.
+// Everything below is touched only on the acceptor's strand.
+struct ManagementServer::State {
+  State(asio::io_context& context, Handler on)
+      : io(context),
+        acceptor(asio::make_strand(context)),
+        retry(acceptor.get_executor()),
+        handler(std::move(on)) {}
 
-void Session::start() { read(); }
+  asio::io_context& io;
+  tcp::acceptor acceptor;
+  asio::steady_timer retry;  // after a transient accept error (e.g. out of descriptors)
+  Handler handler;
+  std::vector<std::weak_ptr<Session>> sessions;
+  bool stopped = false;
+};
 
-void Session::read() {
-  socket_.async_read_some(asio::buffer(buffer_), [self = shared_from_this()](
-                                                     const boost::system::error_code& error,
-                                                     std::size_t size) {
-    if (error) return;  // closed by the peer or by stop()
-    self->decoder_.feed(self->buffer_.data(), size);
-    try {
-      while (auto payload = self->decoder_.next()) {
-        netmc::v1::Request request;
-        if (!request.ParseFromString(*payload)) throw FrameError("request: not a netmc.v1.Request");
-        self->dispatch_(*self, request);
-      }
-    } catch (const std::exception& problem) {
-      netmc::v1::Response response;
-      response.mutable_error()->set_message(problem.what());
-      self->send(response);
-      self->close();
+void ManagementServer::accept_after_error(const std::shared_ptr<State>& state) {
+  state->retry.expires_after(std::chrono::milliseconds(100));
+  state->retry.async_wait([state](const boost::system::error_code& error) {
+    if (!error && !state->stopped) accept(state);
+  });
+}
+
+void ManagementServer::accept(const std::shared_ptr<State>& state) {
+  // Each session gets its own strand: its handlers never run concurrently.
+  const asio::any_io_executor session_executor = asio::make_strand(state->io);
+  state->acceptor.async_accept(session_executor, [state](const boost::system::error_code& error,
+                                                         tcp::socket socket) {
+    if (state->stopped || error == asio::error::operation_aborted) return;
+    if (error) {
+      accept_after_error(state);
       return;
     }
-    self->read();
-  });
-}
-
-void Session::send(const netmc::v1::Response& response) {
-  auto frame = std::make_shared<std::string>(encode_frame(response));
-  asio::post(socket_.get_executor(), [self = shared_from_this(), frame] {
-    self->outbox_.push_back(std::move(*frame));
-    if (self->outbox_.size() == 1) self->write_next();
-  });
-}
-
-void Session::write_next() {
-  asio::async_write(socket_, asio::buffer(outbox_.front()),
-                    [self = shared_from_this()](const boost::system::error_code& error, std::size_t) {
-                      if (error) {
-                        self->outbox_.clear();
-                        return;
-                      }
-                      self->outbox_.pop_front();
-                      if (!self->outbox_.empty()) {
-                        self->write_next();
-                      } else if (self->closing_) {
-                        boost::system::error_code ignored;
-                        self->socket_.close(ignored);
-                      }
-                    });
-}
-
-void Session::close() {
-  asio::post(socket_.get_executor(), [self = shared_from_this()] {
-    // Queued responses (e.g. the error) leave first; write_next() closes after the last one.
-    self->closing_ = true;
-    if (self->outbox_.empty()) {
-      boost::system::error_code ignored;
-      self->socket_.close(ignored);
-    }
+    std::erase_if(state->sessions, [](const std::weak_ptr<Session>& s) { return s.expired(); });
+    auto session = std::make_shared<Session>(std::move(socket), state->handler.on_request);
+    state->sessions.push_back(session);
+    session->start();
+    accept(state);
   });
 }
 
 ManagementServer::ManagementServer(asio::io_context& io, const std::string& bind_address,
                                    std::uint16_t port, Handler handler)
-    : acceptor_(io), handler_(std::move(handler)) {
+    : state_(std::make_shared<State>(io, std::move(handler))) {
   boost::system::error_code error;
   const auto address = asio::ip::make_address(bind_address, error);
   if (error) throw std::invalid_argument("--listen: '" + bind_address + "' is not an IP address");
   const tcp::endpoint endpoint(address, port);
-  acceptor_.open(endpoint.protocol());
-  acceptor_.set_option(tcp::acceptor::reuse_address(true));
-  acceptor_.bind(endpoint, error);
-  if (error) {
-    throw std::runtime_error("--listen: cannot bind " + bind_address + ":" + std::to_string(port) +
-                             ": " + error.message());
-  }
-  acceptor_.listen();
-  accept();
+  const std::string where = (address.is_v6() ? "[" + bind_address + "]" : bind_address) + ":" +
+                            std::to_string(port);
+  auto& acceptor = state_->acceptor;
+  acceptor.open(endpoint.protocol(), error);
+  if (!error) acceptor.set_option(tcp::acceptor::reuse_address(true), error);
+  if (!error) acceptor.bind(endpoint, error);
+  if (!error) acceptor.listen(asio::socket_base::max_listen_connections, error);
+  if (!error) port_ = acceptor.local_endpoint(error).port();
+  if (error) throw std::runtime_error("--listen: cannot listen on " + where + ": " + error.message());
+  accept(state_);
 }
 
-std::uint16_t ManagementServer::port() const { return acceptor_.local_endpoint().port(); }
+ManagementServer::~ManagementServer() { stop(); }
 
 void ManagementServer::stop() {
-  boost::system::error_code ignored;
-  acceptor_.close(ignored);
-}
-
-void ManagementServer::accept() {
-  acceptor_.async_accept([this](const boost::system::error_code& error, tcp::socket socket) {
-    if (error) return;  // stopped
-    std::make_shared<Session>(std::move(socket), handler_.on_request)->start();
-    accept();
+  asio::dispatch(state_->acceptor.get_executor(), [state = state_] {
+    if (state->stopped) return;
+    state->stopped = true;
+    boost::system::error_code ignored;
+    state->acceptor.close(ignored);
+    state->retry.cancel();
+    for (const auto& weak : state->sessions) {
+      if (auto session = weak.lock()) session->abort();
+    }
+    state->sessions.clear();
   });
 }
 

@@ -6,53 +6,45 @@
 
 #include <boost/asio.hpp>
 
-#include <deque>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
 
 #include "idl/management.pb.h"
-#include "server/management/frame_codec.hpp"
+#include "server/management/session.hpp"
 
 namespace netmc::management {
-
-class Session : public std::enable_shared_from_this<Session> {
- public:
-  using Dispatch = std::function<void(Session&, const netmc::v1::Request&)>;
-  Session(boost::asio::ip::tcp::socket socket, Dispatch dispatch);
-
-  void start();
-  // Thread-safe; responses leave in the order they were sent.
-  void send(const netmc::v1::Response& response);
-  void close();
-
- private:
-  void read();
-  void write_next();
-
-  boost::asio::ip::tcp::socket socket_;
-  Dispatch dispatch_;
-  FrameDecoder decoder_;
-  std::array<char, 8192> buffer_{};
-  std::deque<std::string> outbox_;
-  bool closing_ = false;
-};
 
 class ManagementServer {
  public:
   struct Handler {
-    Session::Dispatch on_request;
+    std::function<void(Session&, const netmc::v1::Request&)> on_request;
   };
+
+  // Listens on bind_address:port (an IP address; port 0 = ephemeral, see port()). Throws
+  // std::invalid_argument for a bind_address that is not an IP address and std::runtime_error
+  // when it cannot listen. The io_context is run by the caller.
   ManagementServer(boost::asio::io_context& io, const std::string& bind_address, std::uint16_t port,
                    Handler handler);
-  std::uint16_t port() const;
+  ~ManagementServer();  // stop()
+  ManagementServer(const ManagementServer&) = delete;
+  ManagementServer& operator=(const ManagementServer&) = delete;
+
+  // The port listened on (the ephemeral one chosen when constructed with 0).
+  std::uint16_t port() const { return port_; }
+
+  // Thread-safe, idempotent: stops accepting and closes every open session (queued responses
+  // are dropped). Once the handler's own work is done, io_context::run() returns.
   void stop();
 
  private:
-  void accept();
+  struct State;
+  static void accept(const std::shared_ptr<State>& state);
+  static void accept_after_error(const std::shared_ptr<State>& state);
 
-  boost::asio::ip::tcp::acceptor acceptor_;
-  Handler handler_;
+  std::shared_ptr<State> state_;
+  std::uint16_t port_ = 0;
 };
 
 }  // namespace netmc::management

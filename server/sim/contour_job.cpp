@@ -36,9 +36,15 @@ void ContourJob::validate() const {
   require(divergence_limit_m > 0.0, "divergence_limit: expected a positive length");
   require(uplink.delay && uplink.loss && downlink.delay && downlink.loss,
           "delay: every link needs a delay and a loss model");
+  require(!initial_position || initial_position->allFinite(),
+          "initial_position: expected finite coordinates");
   const double run_s = duration_s > 0.0 ? duration_s : trajectory->duration_s();
   require(run_s / sample_period_s <= 1e8,
           "sample_period: too many cycles for the run length (more than 1e8)");
+}
+
+Eigen::Vector2d ContourJob::start_position() const {
+  return initial_position ? *initial_position : Eigen::Vector2d(trajectory->sample(0.0).position);
 }
 
 double ContourJob::evaluation_start() const {

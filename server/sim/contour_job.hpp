@@ -3,9 +3,12 @@
 // controller on one plant set over one network profile. Built from the protobuf JobSpec at the
 // edge (server/job) so this layer stays free of protobuf and transport.
 
+#include <Eigen/Dense>
+
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +51,9 @@ struct ContourJob {
   // Start of the evaluation window of the steady metrics; 0: after two periods of the reference.
   double evaluation_start_s = 0.0;
   double evaluation_start() const;
+  // Where the axes rest at t = 0; unset: the trajectory's start (zero initial error).
+  std::optional<Eigen::Vector2d> initial_position;
+  Eigen::Vector2d start_position() const;
   bool record_traces = false;
 
   // Throws std::invalid_argument naming the field when the job cannot run.

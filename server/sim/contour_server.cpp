@@ -41,7 +41,7 @@ ContourServer::ContourServer(const ContourJob& job)
 
 Eigen::Vector2d ContourServer::begin_iteration(std::size_t iteration) {
   // Every iteration starts from the same initial state; nothing of the previous one is in flight.
-  const Eigen::Vector2d start = job_.trajectory->sample(0.0).position;
+  const Eigen::Vector2d start = job_.start_position();
   for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
     uplinks_[axis].reset(job_stream(job_.seed, StreamKind::uplink, axis, iteration));
   }
@@ -64,6 +64,7 @@ Eigen::Vector2d ContourServer::begin_iteration(std::size_t iteration) {
   steady_samples_ = 0;
   tracking_squares_ = {};
   command_squares_ = {};
+  steady_command_squares_ = {};
   compute_time_ = 0.0;
   samples_ = 0;
   return start;
@@ -148,6 +149,10 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
     tracking_squares_[axis] += tracking * tracking;
     m.tracking_max_m[axis] = std::max(m.tracking_max_m[axis], std::abs(tracking));
     command_squares_[axis] += step.command[i] * step.command[i];
+    if (t >= evaluation_start_) {
+      const double applied = std::min(std::abs(step.command[i]), job_.command_limit);
+      steady_command_squares_[axis] += applied * applied;
+    }
   }
   if (job_.record_traces) {
     CycleTrace& row = record_.trace[cycle];
@@ -193,6 +198,10 @@ IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
   for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
     m.tracking_rms_m[axis] = std::sqrt(tracking_squares_[axis] / n);
     m.command_rms[axis] = std::sqrt(command_squares_[axis] / n);
+    if (steady_samples_ > 0) {
+      m.command_rms_steady[axis] =
+          std::sqrt(steady_command_squares_[axis] / static_cast<double>(steady_samples_));
+    }
   }
   m.lost_setpoints = lost_setpoints;
   m.stale_setpoints = stale_setpoints;

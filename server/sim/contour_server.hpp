@@ -64,7 +64,7 @@ class ContourServer {
   double squared_error_sum_ = 0.0;
   double steady_squared_sum_ = 0.0;
   std::size_t steady_samples_ = 0;
-  std::array<double, 2> tracking_squares_{}, command_squares_{};
+  std::array<double, 2> tracking_squares_{}, command_squares_{}, steady_command_squares_{};
   double compute_time_ = 0.0;
   std::size_t samples_ = 0;
 };

@@ -17,6 +17,8 @@ struct IterationMetrics {
   std::array<double, 2> tracking_rms_m{};
   std::array<double, 2> tracking_max_m{};
   std::array<double, 2> command_rms{};
+  // Over the evaluation window, of the command as the axis applies it (limited to command_limit).
+  std::array<double, 2> command_rms_steady{};
   double tau_mean_s = 0.0;               // loop delay t_arrival(setpoint k) - t_k
   double tau_p50_s = 0.0;
   double tau_p99_s = 0.0;

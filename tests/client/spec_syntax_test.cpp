@@ -161,6 +161,41 @@ TEST(SpecSyntax, Gains) {
             std::string::npos);
   EXPECT_NE(error_of([&] { parse_adrc_gains("observer=rk4", adrc); }).find("euler or zoh"),
             std::string::npos);
+  EXPECT_NE(error_of([&] { parse_adrc_gains("b0=x", adrc, "--adrc-y"); }).find("--adrc-y"),
+            std::string::npos);
+}
+
+TEST(SpecSyntax, GtcfAdrcBandwidths) {
+  netmc::v1::GtcfAdrcGains gains;
+  parse_gtcf_adrc_gains("wc=250,wo=1200,observer=zoh", gains);
+  EXPECT_EQ(gains.wc(), 250.0);
+  EXPECT_FALSE(gains.has_wm());
+  EXPECT_EQ(gains.woc(), 1200.0);  // wo sets both observers
+  EXPECT_EQ(gains.wom(), 1200.0);
+  EXPECT_EQ(gains.observer(), "zoh");
+  EXPECT_EQ(gains.observer_input_delay(), 0u);
+  parse_gtcf_adrc_gains("delay=5", gains);
+  EXPECT_EQ(gains.observer_input_delay(), 5u);
+  for (const char* bad : {"wc=0", "wo=1000,wom=500", "kp=3", "observer=rk4", "delay=1.5", "delay=-1"}) {
+    EXPECT_NE(error_of([&] { parse_gtcf_adrc_gains(bad, gains); }).find("--gtcf-adrc"), std::string::npos)
+        << bad;
+  }
+}
+
+TEST(SpecSyntax, TaskSpaceAndInitialPosition) {
+  netmc::v1::TaskSpaceGains gains;
+  parse_task_space_gains("init_filter=on,wm=2", gains);
+  EXPECT_TRUE(gains.initialization_filter());
+  EXPECT_FALSE(gains.has_filter_wc());
+  EXPECT_EQ(gains.filter_wm(), 2.0);
+  EXPECT_NE(error_of([&] { parse_task_space_gains("init_filter=yes", gains); }).find("on or off"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_task_space_gains("wc=-8", gains); }).find("--task-space"), std::string::npos);
+  const auto position = parse_position("x=10mm,y=-0.02", "--initial-position");
+  EXPECT_DOUBLE_EQ(position.x_m(), 0.01);
+  EXPECT_DOUBLE_EQ(position.y_m(), -0.02);
+  EXPECT_NE(error_of([&] { parse_position("x=1mm", "--initial-position"); }).find("--initial-position"),
+            std::string::npos);
 }
 
 }  // namespace

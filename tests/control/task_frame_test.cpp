@@ -87,5 +87,27 @@ TEST(TaskFrames, ClosedFormsAgreeWithTheNumericalConstruction) {
   EXPECT_NEAR(circle.at(q).rm, numerical_circle.at(q).rm, 1e-8);
 }
 
+TEST(CircleTaskFrame, ClockwiseFrameGrowsAlongTheMotionLikeTheNumericalConstruction) {
+  // Thesis case B (eq. 2-66): clockwise, r = 4 cm about (0, 5 cm), from angle 0.
+  CircleParameters p{{0.0, 0.05}, 0.04, 1.0};
+  p.clockwise = true;
+  const auto trajectory = std::make_shared<CircleTrajectory>(p);
+  NumericalTaskFrame numerical(trajectory);
+  CircleTaskFrame circle(p.center, p.radius_m, true);
+  const Eigen::Vector2d a(0.031, 0.02), b(0.036, 0.072);  // off the contour, a quarter turn apart
+  EXPECT_NEAR(circle.at(a).rc, trajectory->contour_error(a), 1e-12);  // positive outside
+  // On the contour J = [outward normal; tangent of travel]; the numerical frame's normal is the
+  // right of travel, inward on a clockwise contour.
+  const Eigen::Vector2d on = trajectory->sample(0.3).position;
+  EXPECT_LT((circle.at(on).jacobian.row(0) + numerical.at(on).jacobian.row(0)).norm(), 1e-6);
+  EXPECT_LT((circle.at(on).jacobian.row(1) - numerical.at(on).jacobian.row(1)).norm(), 1e-6);
+  // rm differences agree (the origins differ: angle 0 against the motion's start).
+  EXPECT_NEAR(std::remainder(circle.at(b).rm - circle.at(a).rm, numerical.perimeter_m()),
+              std::remainder(numerical.at(b).rm - numerical.at(a).rm, numerical.perimeter_m()), 1e-7);
+  // rm grows at the speed of travel, 2 pi R per revolution.
+  EXPECT_NEAR(circle.at(trajectory->sample(0.31).position).rm - circle.at(on).rm,
+              2.0 * std::numbers::pi * 0.04 * 0.01, 1e-12);
+}
+
 }  // namespace
 }  // namespace netmc::control

@@ -113,6 +113,58 @@ TEST(JobBuilder, ErrorsNameTheField) {
   EXPECT_THROW(parse_job_spec_json(R"({"no_such_field": 1})", "spec.json"), std::invalid_argument);
 }
 
+TEST(JobBuilder, PerAxisAdrcAndTaskSpaceAdrcGains) {
+  auto spec = parse_job_spec_json(R"({
+    "trajectory": {"circle": {"radius_m": 0.04, "period_s": 0.4}},
+    "controller": {"name": "adrc",
+                   "adrc": {"w0": 1500, "b0": 10, "kp": 9000},
+                   "adrc_y": {"b0": 1.8, "observer": "zoh"},
+                   "gtcf_adrc": {"wc": 250, "wom": 400, "observer": "zoh"}}
+  })", "test");
+  apply_defaults(spec);
+  const auto job = build_contour_job(spec);
+  ASSERT_TRUE(job.controller.adrc_y.has_value());
+  // The y axis takes the x axis's gains where its own are unset.
+  EXPECT_EQ(job.controller.adrc_y->input_gain, 1.8);
+  EXPECT_EQ(job.controller.adrc_y->observer_bandwidth, 1500.0);
+  EXPECT_EQ(job.controller.adrc_y->kp, 9000.0);
+  EXPECT_EQ(job.controller.adrc_y->observer_discretization, control::Discretization::zero_order_hold);
+  EXPECT_EQ(job.controller.adrc.observer_discretization, control::Discretization::forward_euler);
+  const auto& g = job.controller.gtcf_adrc;
+  EXPECT_EQ(g.loop_bandwidth, Eigen::Vector2d(250.0, control::GtcfAdrcGains{}.loop_bandwidth[1]));
+  EXPECT_EQ(g.observer_bandwidth, Eigen::Vector2d(control::GtcfAdrcGains{}.observer_bandwidth[0], 400.0));
+  EXPECT_EQ(g.discretization, control::Discretization::zero_order_hold);
+
+  spec.mutable_controller()->mutable_gtcf_adrc()->set_observer("rk4");
+  EXPECT_NE(error_of(spec).find("controller.gtcf_adrc.observer"), std::string::npos);
+  spec.mutable_controller()->mutable_gtcf_adrc()->set_observer("");
+  spec.mutable_controller()->set_name("gtcf-adrc");
+  spec.mutable_controller()->mutable_gtcf_adrc()->set_wc(-1.0);
+  EXPECT_NE(error_of(spec).find("gtcf-adrc loop bandwidth"), std::string::npos);
+}
+
+TEST(JobBuilder, TaskSpaceFilterAndInitialPosition) {
+  auto spec = parse_job_spec_json(R"({
+    "trajectory": {"circle": {"radius_m": 0.04, "center_y_m": 0.05, "period_s": 0.4, "clockwise": true}},
+    "plant": "linmotor",
+    "controller": {"name": "gtcf-darc", "task_space": {"initialization_filter": true, "filter_wm": 2}},
+    "initial_position": {"x_m": 0.0, "y_m": 0.0}
+  })", "test");
+  apply_defaults(spec);
+  const auto job = build_contour_job(spec);
+  EXPECT_TRUE(job.controller.initialization_filter.enabled);
+  EXPECT_EQ(job.controller.initialization_filter.contour_bandwidth, 8.0);  // unset: thesis
+  EXPECT_EQ(job.controller.initialization_filter.tangential_bandwidth, 2.0);
+  ASSERT_TRUE(job.initial_position.has_value());
+  EXPECT_EQ(job.start_position(), Eigen::Vector2d(0.0, 0.0));
+  // Unset, the axes start on the trajectory.
+  spec.clear_initial_position();
+  EXPECT_EQ(build_contour_job(spec).start_position(), Eigen::Vector2d(0.04, 0.05));
+  // The filter lives in the global task frame only.
+  spec.mutable_controller()->set_name("ltcf-sarc");
+  EXPECT_NE(error_of(spec).find("controller: initialization filter"), std::string::npos);
+}
+
 TEST(JobBuilder, JsonOutputUsesProtoFieldNames) {
   sim::IterationMetrics m;
   m.iteration = 2;

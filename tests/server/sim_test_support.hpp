@@ -1,9 +1,13 @@
 #pragma once
-// Small jobs for the runner tests: paper 001's circle on a friction-free linear axis pair.
+// Small jobs for the runner tests: paper 001's circle on a friction-free linear axis pair, and
+// the thesis's ellipse on the linear motors.
 
 #include <memory>
+#include <numbers>
 
 #include "control/circle_trajectory.hpp"
+#include "control/ellipse_trajectory.hpp"
+#include "plant/plant_catalog.hpp"
 #include "plant/second_order_axis.hpp"
 #include "server/sim/contour_job.hpp"
 
@@ -24,6 +28,27 @@ inline ContourJob small_circle_job(const std::string& controller = "adrc") {
   job.sample_period_s = 0.005;
   job.iterations = 1;
   job.seed = 7;
+  return job;
+}
+
+// Thesis (paper 000) eq. 2-68: x = 0.2 sin 7t, y = 0.02 - 0.02 cos 7t (1.4 m/s, 9.8 m/s^2), on
+// the linear-motor plant, h = 0.2 ms, 0.5 um encoder.
+inline ContourJob thesis_ellipse_job(const std::string& controller, double revolutions) {
+  ContourJob job;
+  control::EllipseParameters ellipse;
+  ellipse.center = {0.0, 0.02};
+  ellipse.semi_axis_x_m = 0.2;
+  ellipse.semi_axis_y_m = 0.02;
+  ellipse.period_s = 2.0 * std::numbers::pi / 7.0;
+  ellipse.start_angle_rad = -std::numbers::pi / 2.0;
+  ellipse.revolutions = revolutions;
+  job.trajectory = std::make_shared<control::EllipseTrajectory>(ellipse);
+  auto plants = plant::make_plant_set("linmotor", 2);
+  for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
+  job.plant_name = "linmotor";
+  job.controller_name = controller;
+  job.sample_period_s = 2e-4;
+  job.sensor.resolution_m = 0.5e-6;
   return job;
 }
 

@@ -1,0 +1,61 @@
+#pragma once
+// One connection of the management endpoint: reads framed Requests continuously and hands each
+// to the dispatch function; sends framed Responses in order. Owned by shared_ptr: the pending
+// asynchronous operations keep it alive, so callers hold it (or a weak_ptr) only to answer.
+
+#include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange unincluded
+
+#include <boost/asio.hpp>
+
+#include <array>
+#include <atomic>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "idl/management.pb.h"
+#include "server/management/frame_codec.hpp"
+
+namespace netmc::management {
+
+class Session : public std::enable_shared_from_this<Session> {
+ public:
+  // Called on the io_context thread, on this session's strand, once per Request.
+  using Dispatch = std::function<void(Session&, const netmc::v1::Request&)>;
+
+  // The socket's executor should be a strand (ManagementServer gives each session its own) so
+  // that the io_context may be run by several threads.
+  Session(boost::asio::ip::tcp::socket socket, Dispatch dispatch);
+
+  // Starts reading; call once, after construction by std::make_shared.
+  void start();
+
+  // Thread-safe, from any thread: queues the response; responses leave in the order of the
+  // calls. Dropped once the session is closed. Throws FrameError for a message over 16 MiB.
+  void send(const netmc::v1::Response& response);
+
+  // Thread-safe: false once the connection is closed or closing (by either side).
+  bool open() const { return open_.load(std::memory_order_acquire); }
+
+  // Thread-safe: stops reading, sends the responses already queued, then closes the socket.
+  void close();
+  // Thread-safe: closes the socket now; queued responses are dropped (server shutdown).
+  void abort();
+
+ private:
+  void read();
+  void write_next();
+  void close_on_strand();
+  void abort_on_strand();
+
+  boost::asio::ip::tcp::socket socket_;
+  Dispatch dispatch_;
+  FrameDecoder decoder_;
+  std::array<char, 8192> buffer_{};
+  std::deque<std::string> outbox_;  // front() is being written
+  bool closing_ = false;            // strand only
+  std::atomic<bool> open_{true};
+};
+
+}  // namespace netmc::management
