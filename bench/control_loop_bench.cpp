@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -13,6 +14,10 @@
 #include "client/study_runner.hpp"
 #include "control/circle_trajectory.hpp"
 #include "control/controller_catalog.hpp"
+#include "control/cubic_spline_curve.hpp"
+#include "control/feed_rate_trajectory.hpp"
+#include "control/lissajous_trajectory.hpp"
+#include "control/task_frame.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/sim/contour_job_runner.hpp"
 
@@ -97,8 +102,41 @@ void BM_Seed001Study_20Iterations_AllCores(benchmark::State& state) {
 
 }  // namespace
 
+// One evaluation of the numerical global task frame (exact foot point: the sampled-run search,
+// then safeguarded Newton), as the GTCF controller does twice per cycle, at points 50 um off a
+// closed spline driven at a feed (the costliest reference to sample) and off a Lissajous figure.
+void numerical_frame(benchmark::State& state, const netmc::control::ReferenceTrajectory& contour) {
+  const netmc::control::NumericalTaskFrame frame(std::shared_ptr<const netmc::control::ReferenceTrajectory>(contour.clone()));
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i < 1000; ++i) {
+    const auto c = contour.sample(contour.duration_s() * (i + 0.5) / 1000);
+    points.push_back(c.position + 5e-5 * Eigen::Vector2d(c.velocity.y(), -c.velocity.x()).normalized());
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    auto r = frame.at(points[i]);
+    benchmark::DoNotOptimize(r);
+    if (++i == points.size()) i = 0;
+  }
+}
+
+void BM_NumericalTaskFrame_Spline(benchmark::State& state) {
+  const std::vector<Eigen::Vector2d> points{{0.05, 0.05}, {0.08, 0.045}, {0.1, 0.06}, {0.09, 0.08},
+                                            {0.07, 0.07}, {0.055, 0.085}, {0.04, 0.065}, {0.05, 0.05}};
+  const netmc::control::FeedRateTrajectory spline(std::make_shared<netmc::control::CubicSplineCurve>(points),
+                                                  {0.01, 0.02, 0.02});
+  numerical_frame(state, spline);
+}
+
+void BM_NumericalTaskFrame_Lissajous(benchmark::State& state) {
+  const netmc::control::LissajousTrajectory figure({{0.05, 0.05}, 0.02, 0.015, 3, 2, 0.3, 20.0});
+  numerical_frame(state, figure);
+}
+
 BENCHMARK(BM_ControlStep_AdrcIlccc_TwoAxes);
 BENCHMARK(BM_ControlStep_Adrc_TwoAxes);
+BENCHMARK(BM_NumericalTaskFrame_Spline);
+BENCHMARK(BM_NumericalTaskFrame_Lissajous);
 BENCHMARK(BM_SimulatedIteration_Seed001_AdrcIlccc)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Seed001Study_20Iterations)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Seed001Study_20Iterations_AllCores)->Unit(benchmark::kMillisecond)->UseRealTime();

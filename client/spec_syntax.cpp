@@ -34,18 +34,29 @@ KindSpec split_kind(std::string_view text) {
   return spec;
 }
 
-// Parses "a=1,b=2" and checks every key is allowed.
+// Parses "a=1,b=2" and checks every key is allowed. The value of a key in `list_keys` may contain
+// commas itself ("points=0,0;1mm,0"): the items without '=' that follow it belong to it.
 std::map<std::string, std::string> parse_keys(std::string_view text, std::string_view field,
-                                              const std::vector<std::string>& allowed) {
+                                              const std::vector<std::string>& allowed,
+                                              const std::vector<std::string>& list_keys = {}) {
   std::map<std::string, std::string> keys;
   std::string expected;
   for (const auto& key : allowed) expected += (expected.empty() ? "" : ", ") + key;
   std::size_t start = 0;
+  std::string list_key;  // the list-valued key being read
   while (start <= text.size() && !text.empty()) {
     const std::size_t comma = text.find(',', start);
     const std::string_view item =
         trim(text.substr(start, comma == std::string_view::npos ? text.size() - start : comma - start));
     const std::size_t equals = item.find('=');
+    if (!item.empty() && equals == std::string_view::npos && !list_key.empty()) {
+      std::string& value = keys[list_key];
+      value.push_back(',');
+      value.append(item);
+      if (comma == std::string_view::npos) break;
+      start = comma + 1;
+      continue;
+    }
     if (item.empty() || equals == std::string_view::npos) {
       fail(field, "expected key=value, got '" + std::string(item) + "' (keys: " + expected + ")");
     }
@@ -55,6 +66,10 @@ std::map<std::string, std::string> parse_keys(std::string_view text, std::string
     if (!known) fail(field, "unknown key '" + key + "' (expected one of: " + expected + ")");
     if (keys.contains(key)) fail(field, "key '" + key + "' given twice");
     keys[key] = std::string(trim(item.substr(equals + 1)));
+    list_key.clear();
+    for (const auto& candidate : list_keys) {
+      if (candidate == key) list_key = key;
+    }
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
@@ -69,6 +84,57 @@ double key_quantity(const std::map<std::string, std::string>& keys, const std::s
     fail(field, "missing key '" + key + "'");
   }
   return parse_quantity(it->second, quantity, std::string(field) + " " + key);
+}
+
+// "X,Y;X,Y;..." -> points, each coordinate a length.
+google::protobuf::RepeatedPtrField<netmc::v1::Point2> parse_points(const std::map<std::string, std::string>& keys,
+                                                                   std::string_view field) {
+  const auto it = keys.find("points");
+  if (it == keys.end()) fail(field, "missing key 'points' (expected points=X,Y;X,Y;... such as 0,0;10mm,0;10mm,10mm)");
+  google::protobuf::RepeatedPtrField<netmc::v1::Point2> points;
+  std::string_view text = it->second;
+  int index = 0;
+  while (true) {
+    ++index;
+    const std::size_t semicolon = text.find(';');
+    const std::string_view item = trim(text.substr(0, semicolon));
+    const std::size_t comma = item.find(',');
+    const std::string name = std::string(field) + " points: point " + std::to_string(index);
+    if (comma == std::string_view::npos || item.find(',', comma + 1) != std::string_view::npos) {
+      fail(name, "expected X,Y (two lengths such as 10mm,0), got '" + std::string(item) + "'");
+    }
+    auto& point = *points.Add();
+    point.set_x_m(parse_quantity(item.substr(0, comma), Quantity::length, name + " x"));
+    point.set_y_m(parse_quantity(item.substr(comma + 1), Quantity::length, name + " y"));
+    if (semicolon == std::string_view::npos) break;
+    text.remove_prefix(semicolon + 1);
+  }
+  return points;
+}
+
+std::uint32_t key_whole_number(const std::map<std::string, std::string>& keys, const std::string& key,
+                               std::string_view field) {
+  const double value = key_quantity(keys, key, Quantity::plain, field);
+  if (value < 1.0 || value != std::floor(value) || value > 1e6) {
+    fail(std::string(field) + " " + key, "expected a positive whole number, got '" + keys.at(key) + "'");
+  }
+  return static_cast<std::uint32_t>(value);
+}
+
+// feed=..,amax=..[,at=..]: speed along the contour, normal and tangential acceleration limits.
+void parse_feed(const std::map<std::string, std::string>& keys, std::string_view field, netmc::v1::FeedRate& feed) {
+  feed.set_feed_m_s(key_quantity(keys, "feed", Quantity::speed, field));
+  feed.set_max_normal_acceleration_m_s2(key_quantity(keys, "amax", Quantity::acceleration, field));
+  feed.set_max_tangential_acceleration_m_s2(key_quantity(keys, "at", Quantity::acceleration, field, 0.0));
+}
+
+// A shape timed either at a uniform rate (period=..) or by a feed-rate profile (feed=..,amax=..).
+bool uses_feed(const std::map<std::string, std::string>& keys, std::string_view field, const std::string& shape) {
+  const bool feed = keys.contains("feed") || keys.contains("amax") || keys.contains("at");
+  if (feed && keys.contains("period")) {
+    fail(field, shape + " takes period=.. (uniform rate) or feed=..,amax=.. (feed rate), not both");
+  }
+  return feed;
 }
 
 void require_kind_argument(const KindSpec& spec, std::string_view field, const std::string& form) {
@@ -96,9 +162,11 @@ double parse_quantity(std::string_view text, Quantity quantity, std::string_view
   double value = 0.0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   const std::string_view unit = trim(std::string_view(end, static_cast<std::size_t>(text.data() + text.size() - end)));
-  const char* form = quantity == Quantity::length ? "a length such as 10mm, 0.01 or 250um"
-                     : quantity == Quantity::time ? "a duration such as 5ms, 0.005 or 800us"
-                                                  : "a number";
+  const char* form = quantity == Quantity::length  ? "a length such as 10mm, 0.01 or 250um"
+                     : quantity == Quantity::time  ? "a duration such as 5ms, 0.005 or 800us"
+                     : quantity == Quantity::speed ? "a speed such as 20mm/s or 0.02"
+                     : quantity == Quantity::acceleration ? "an acceleration such as 500mm/s2 or 0.5"
+                                                          : "a number";
   if (error != std::errc() || text.empty() || !std::isfinite(value)) {
     fail(field, "expected " + std::string(form) + ", got '" + std::string(text) + "'");
   }
@@ -117,6 +185,16 @@ double parse_quantity(std::string_view text, Quantity quantity, std::string_view
     scale = 1e-3;
   } else if (quantity == Quantity::time && unit == "us") {
     scale = 1e-6;
+  } else if (quantity == Quantity::speed && unit == "m/s") {
+    scale = 1.0;
+  } else if (quantity == Quantity::speed && unit == "mm/s") {
+    scale = 1e-3;
+  } else if (quantity == Quantity::speed && unit == "um/s") {
+    scale = 1e-6;
+  } else if (quantity == Quantity::acceleration && (unit == "m/s2" || unit == "m/s^2")) {
+    scale = 1.0;
+  } else if (quantity == Quantity::acceleration && (unit == "mm/s2" || unit == "mm/s^2")) {
+    scale = 1e-3;
   } else {
     fail(field, "expected " + std::string(form) + ", got unit '" + std::string(unit) + "'");
   }
@@ -140,13 +218,17 @@ netmc::v1::Trajectory parse_trajectory(std::string_view text) {
     c.set_revolutions(key_quantity(keys, "revolutions", Quantity::plain, field, 1.0));
   } else if (spec.kind == "ellipse") {
     const auto keys = parse_keys(spec.argument, field,
-                                 {"a", "b", "cx", "cy", "period", "start", "cw", "revolutions"});
+                                 {"a", "b", "cx", "cy", "period", "start", "cw", "revolutions", "feed", "amax", "at"});
     auto& e = *out.mutable_ellipse();
     e.set_semi_axis_x_m(key_quantity(keys, "a", Quantity::length, field));
     e.set_semi_axis_y_m(key_quantity(keys, "b", Quantity::length, field));
     e.set_center_x_m(key_quantity(keys, "cx", Quantity::length, field, 0.0));
     e.set_center_y_m(key_quantity(keys, "cy", Quantity::length, field, 0.0));
-    e.set_period_s(key_quantity(keys, "period", Quantity::time, field));
+    if (uses_feed(keys, field, "ellipse")) {
+      parse_feed(keys, field, *e.mutable_feed());
+    } else {
+      e.set_period_s(key_quantity(keys, "period", Quantity::time, field));
+    }
     e.set_start_angle_rad(key_quantity(keys, "start", Quantity::plain, field, 0.0));
     e.set_clockwise(key_quantity(keys, "cw", Quantity::plain, field, 0.0) != 0.0);
     e.set_revolutions(key_quantity(keys, "revolutions", Quantity::plain, field, 1.0));
@@ -158,10 +240,40 @@ netmc::v1::Trajectory parse_trajectory(std::string_view text) {
     l.set_x1_m(key_quantity(keys, "x1", Quantity::length, field));
     l.set_y1_m(key_quantity(keys, "y1", Quantity::length, field));
     l.set_duration_s(key_quantity(keys, "duration", Quantity::time, field));
+  } else if (spec.kind == "lissajous") {
+    const auto keys = parse_keys(spec.argument, field,
+                                 {"ax", "ay", "p", "q", "phase", "cx", "cy", "period", "feed", "amax", "at"});
+    auto& l = *out.mutable_lissajous();
+    l.set_amplitude_x_m(key_quantity(keys, "ax", Quantity::length, field));
+    l.set_amplitude_y_m(key_quantity(keys, "ay", Quantity::length, field));
+    l.set_frequency_x(key_whole_number(keys, "p", field));
+    l.set_frequency_y(key_whole_number(keys, "q", field));
+    l.set_phase_rad(key_quantity(keys, "phase", Quantity::plain, field, 0.0));
+    l.set_center_x_m(key_quantity(keys, "cx", Quantity::length, field, 0.0));
+    l.set_center_y_m(key_quantity(keys, "cy", Quantity::length, field, 0.0));
+    if (uses_feed(keys, field, "lissajous")) {
+      parse_feed(keys, field, *l.mutable_feed());
+    } else {
+      l.set_period_s(key_quantity(keys, "period", Quantity::time, field));
+    }
+  } else if (spec.kind == "polyline") {
+    const auto keys = parse_keys(spec.argument, field, {"points", "vmax", "amax", "corner"}, {"points"});
+    auto& l = *out.mutable_polyline();
+    *l.mutable_points() = parse_points(keys, field);
+    l.set_max_speed_m_s(key_quantity(keys, "vmax", Quantity::speed, field));
+    l.set_max_acceleration_m_s2(key_quantity(keys, "amax", Quantity::acceleration, field));
+    l.set_corner_speed_m_s(key_quantity(keys, "corner", Quantity::speed, field, 0.0));
+  } else if (spec.kind == "spline") {
+    const auto keys = parse_keys(spec.argument, field, {"points", "feed", "amax", "at"}, {"points"});
+    auto& s = *out.mutable_spline();
+    *s.mutable_points() = parse_points(keys, field);
+    parse_feed(keys, field, *s.mutable_feed());
   } else {
     fail(field, "unknown shape '" + spec.kind +
                     "' (expected circle:r=..,cx=..,cy=..,period=.., ellipse:a=..,b=..,cx=..,cy=..,"
-                    "period=.. or line:x0=..,y0=..,x1=..,y1=..,duration=..)");
+                    "period=.., line:x0=..,y0=..,x1=..,y1=..,duration=.., "
+                    "lissajous:ax=..,ay=..,p=..,q=..,period=.., polyline:points=X,Y;X,Y;..,vmax=..,amax=.. "
+                    "or spline:points=X,Y;X,Y;..,feed=..,amax=..)");
   }
   return out;
 }

@@ -11,16 +11,22 @@
 
 namespace netmc::cli {
 
-enum class Quantity { length, time, plain };
+enum class Quantity { length, time, speed, acceleration, plain };
 
 // "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
 std::vector<std::string> split_list(const std::string& text);
 
-// "10mm" -> 0.01 (length), "0.5ms" -> 5e-4 (time), "3" -> 3 (SI). `field` names the flag/key.
+// "10mm" -> 0.01 (length), "0.5ms" -> 5e-4 (time), "20mm/s" -> 0.02 (speed),
+// "0.5m/s2" -> 0.5 (acceleration; also m/s^2, mm/s2), "3" -> 3 (SI). `field` names the flag/key.
 double parse_quantity(std::string_view text, Quantity quantity, std::string_view field);
 
 // --trajectory circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=..
+//              (ellipse and lissajous: feed=..,amax=..[,at=..] instead of period for a feed rate)
 //              | line:x0=..,y0=..,x1=..,y1=..,duration=..
+//              | lissajous:ax=..,ay=..,p=3,q=2,period=..[,phase=..,cx=..,cy=..][,feed=..,amax=..[,at=..]]
+//              | polyline:points=X,Y;X,Y;...,vmax=..,amax=..[,corner=..]
+//              | spline:points=X,Y;X,Y;...,feed=..,amax=..[,at=..]
+// Points are x,y pairs of lengths separated by ';' (closed when the last equals the first).
 netmc::v1::Trajectory parse_trajectory(std::string_view text);
 // --delay none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=..[,min=..,max=..]
 //         | pareto:scale=..,shape=..[,max=..] | markov:good=0.3ms..0.8ms,bad=5ms..10ms,p_gb=..,p_bg=..

@@ -146,7 +146,10 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
       ->check(CLI::IsMember({"lockstep", "realtime"}));
   app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty, thesis-ellipse, thesis-circle, thesis-darc, thesis-ellipse-delay");
   app->add_option("--spec", flags.spec_file, "Job spec as JSON (protobuf JSON mapping of netmc.v1.JobSpec)");
-  app->add_option("--trajectory", flags.trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. | line:x0=..,y0=..,x1=..,y1=..,duration=..");
+  app->add_option("--trajectory", flags.trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. (or feed=..,amax=.. instead of period) | line:x0=..,y0=..,x1=..,y1=..,duration=.. | "
+                  "lissajous:ax=20mm,ay=15mm,p=3,q=2,period=20s[,phase=..,cx=..,cy=..] (or feed=..,amax=.. instead of period) | "
+                  "polyline:points=0,0;10mm,0;10mm,10mm,vmax=10mm/s,amax=100mm/s2[,corner=..] | "
+                  "spline:points=X,Y;X,Y;...,feed=10mm/s,amax=50mm/s2[,at=..] (points closed when the last equals the first)");
   app->add_option("--controller", flags.controllers, "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc ...; task space: gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, gtcf-adrc");
   app->add_option("--delay", flags.delay, "Loop delay on the controller->actuator link: none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=.. | pareto:scale=..,shape=.. | markov:good=A..B,bad=C..D,p_gb=..,p_bg=.. | trace:FILE.csv");
   app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);

@@ -53,4 +53,28 @@ std::string EllipseTrajectory::describe() const {
   return text.str();
 }
 
+EllipseCurve::EllipseCurve(const EllipseParameters& parameters) : p_(EllipseTrajectory(parameters).parameters()) {}
+
+double EllipseCurve::span() const { return 2.0 * std::numbers::pi; }
+
+CurvePoint EllipseCurve::evaluate(double u) const {
+  const double direction = p_.clockwise ? -1.0 : 1.0;
+  const double angle = p_.start_angle_rad + direction * u;
+  const double a = p_.semi_axis_x_m, b = p_.semi_axis_y_m;
+  const double c = std::cos(angle), s = std::sin(angle);
+  CurvePoint point;
+  point.position = p_.center + Eigen::Vector2d(a * c, b * s);
+  point.first = direction * Eigen::Vector2d(-a * s, b * c);
+  point.second = Eigen::Vector2d(-a * c, -b * s);
+  return point;
+}
+
+std::string EllipseCurve::describe() const {
+  std::ostringstream text;
+  text << "ellipse(a=" << p_.semi_axis_x_m * 1e3 << " mm, b=" << p_.semi_axis_y_m * 1e3
+       << " mm, centre=(" << p_.center.x() * 1e3 << ", " << p_.center.y() * 1e3 << ") mm"
+       << (p_.clockwise ? ", clockwise" : "") << ")";
+  return text.str();
+}
+
 }  // namespace netmc::control

@@ -3,6 +3,7 @@
 // y = cy + b sin(phi), phi = phi0 +/- 2 pi t / period. Curvature varies along the contour, which
 // is what makes it a harder test than the circle.
 
+#include "control/planar_curve.hpp"
 #include "control/reference_trajectory.hpp"
 
 namespace netmc::control {
@@ -15,6 +16,21 @@ struct EllipseParameters {
   double start_angle_rad = 0.0;
   bool clockwise = false;
   double revolutions = 1.0;
+};
+
+// One revolution of the same ellipse as a geometric curve, u in [0, 2 pi] from the start angle
+// in the direction of travel (the period and revolutions are ignored), for a feed-rate profile
+// (FeedRateTrajectory) instead of the uniform parameter rate.
+class EllipseCurve final : public PlanarCurve {
+ public:
+  explicit EllipseCurve(const EllipseParameters& parameters);
+  CurvePoint evaluate(double u) const override;
+  double span() const override;
+  bool closed() const override { return true; }
+  std::string describe() const override;
+
+ private:
+  EllipseParameters p_;
 };
 
 class EllipseTrajectory final : public ReferenceTrajectory {

@@ -125,6 +125,7 @@ NumericalTaskFrame::NumericalTaskFrame(std::shared_ptr<const ReferenceTrajectory
   if (!contour_) throw std::invalid_argument("task frame: missing contour");
   arc_table_ = arc_table(contour_->duration_s(),
                          [&](double t) { return contour_->sample(t).velocity.norm(); });
+  grid_ = sample_contour(*contour_);
 }
 
 double NumericalTaskFrame::perimeter_m() const {
@@ -133,17 +134,55 @@ double NumericalTaskFrame::perimeter_m() const {
 }
 
 TaskCoordinates NumericalTaskFrame::at(const Eigen::Vector2d& q) const {
-  const FootPoint foot = exact_foot_point(*contour_, q);
+  return coordinates(q, nearest_on_contour(grid_, curve_of(*contour_), q));
+}
+
+std::size_t NumericalTaskFrame::sample_index(double rm) const {
+  const auto entry = std::lower_bound(arc_table_.begin(), arc_table_.end(), rm);
+  const double fraction = static_cast<double>(entry - arc_table_.begin()) / static_cast<double>(arc_table_.size() - 1);
+  return static_cast<std::size_t>(std::lround(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(grid_.positions.size() - 1)));
+}
+
+TaskCoordinates NumericalTaskFrame::near(const Eigen::Vector2d& q, double rm_hint) const {
+  const double length = arc_table_.back();
+  const double window = 0.05 * length;
+  const double perimeter = perimeter_m();
+  if (perimeter > 0.0) {
+    // Closed: the window may run across the seam.
+    const auto wrap = [&](double rm) { return rm - perimeter * std::floor(rm / perimeter); };
+    return coordinates(q, nearest_on_contour(grid_, curve_of(*contour_), q, sample_index(wrap(rm_hint - window)),
+                                             sample_index(wrap(rm_hint + window))));
+  }
+  return coordinates(q, nearest_on_contour(grid_, curve_of(*contour_), q, sample_index(rm_hint - window),
+                                           sample_index(rm_hint + window)));
+}
+
+TaskCoordinates NumericalTaskFrame::coordinates(const Eigen::Vector2d& q, const FootPoint& foot) const {
   const ReferencePoint c = contour_->sample(foot.time_s);
-  const double speed = c.velocity.norm();
-  if (speed <= 0.0) throw std::invalid_argument("task frame: the foot point is a cusp (no tangent)");
-  const Eigen::Vector2d tangent = c.velocity / speed;
-  const Eigen::Vector2d normal(tangent.y(), -tangent.x());  // right of travel
+  const double mean_speed = arc_table_.back() / contour_->duration_s();
   TaskCoordinates r;
-  r.rc = (q - c.position).dot(normal) >= 0.0 ? foot.distance_m : -foot.distance_m;
   r.rm = interpolate(arc_table_, contour_->duration_s(), foot.time_s);
+  if (c.velocity.norm() > 1e-6 * mean_speed) {
+    const Eigen::Vector2d tangent = c.velocity.normalized();
+    const Eigen::Vector2d normal(tangent.y(), -tangent.x());  // right of travel
+    r.rc = (q - c.position).dot(normal) >= 0.0 ? foot.distance_m : -foot.distance_m;
+    r.jacobian.row(0) = normal.transpose();
+    r.jacobian.row(1) = tangent.transpose();
+    return r;
+  }
+  // The motion stops at the foot point (a sharp corner): the side by the chord through it, and
+  // the gradient of the distance, (q - c) / |q - c|, as the contour direction.
+  const double step = 1e-6 * contour_->duration_s();
+  const Eigen::Vector2d chord = contour_->sample(std::min(foot.time_s + step, contour_->duration_s())).position -
+                                contour_->sample(std::max(foot.time_s - step, 0.0)).position;
+  if (!(chord.norm() > 0.0)) throw std::invalid_argument("task frame: the foot point is a cusp (no tangent)");
+  Eigen::Vector2d normal = Eigen::Vector2d(chord.y(), -chord.x()).normalized();
+  const Eigen::Vector2d offset = q - c.position;
+  const bool right = offset.dot(normal) >= 0.0;
+  if (foot.distance_m > 0.0) normal = (right ? offset : -offset) / foot.distance_m;
+  r.rc = right ? foot.distance_m : -foot.distance_m;
   r.jacobian.row(0) = normal.transpose();
-  r.jacobian.row(1) = tangent.transpose();
+  r.jacobian.row(1) << -normal.y(), normal.x();
   return r;
 }
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "control/foot_point.hpp"
 #include "control/reference_trajectory.hpp"
 
 namespace netmc::control {
@@ -23,6 +24,10 @@ class TaskFrame {
  public:
   virtual ~TaskFrame() = default;
   virtual TaskCoordinates at(const Eigen::Vector2d& q) const = 0;
+  // The same with the foot point sought along the contour near arc length `rm_hint` (e.g. where
+  // the motion was a cycle ago), for contours that come back near themselves, where the global
+  // foot point would jump to another branch. Frames with a unique foot point ignore the hint.
+  virtual TaskCoordinates near(const Eigen::Vector2d& q, double /*rm_hint*/) const { return at(q); }
   // Length of a closed contour (rm wraps at it); 0 for an open one.
   virtual double perimeter_m() const = 0;
 };
@@ -61,17 +66,25 @@ class EllipseTaskFrame final : public TaskFrame {
 };
 
 // Any desired motion: rc = signed distance to the exact foot point, rm = arc length to it,
-// J = [outward normal; tangent] at the foot point (exact on the contour).
+// J = [outward normal; tangent] at the foot point (exact on the contour). Where the motion stops
+// at the foot point (a sharp corner), the side is taken from the chord through it and the
+// normal is the gradient of the distance.
 class NumericalTaskFrame final : public TaskFrame {
  public:
   explicit NumericalTaskFrame(std::shared_ptr<const ReferenceTrajectory> contour);
   TaskCoordinates at(const Eigen::Vector2d& q) const override;
+  // Searches the samples within 5 % of the contour's length of `rm_hint`.
+  TaskCoordinates near(const Eigen::Vector2d& q, double rm_hint) const override;
   // Closed when the motion ends where it starts.
   double perimeter_m() const override;
 
  private:
   std::shared_ptr<const ReferenceTrajectory> contour_;
   std::vector<double> arc_table_;  // s at t = duration i / N
+  TaskCoordinates coordinates(const Eigen::Vector2d& q, const FootPoint& foot) const;
+  std::size_t sample_index(double rm) const;  // the grid sample at arc length rm
+
+  SampledContour grid_;            // the global search's samples, taken once
 };
 
 }  // namespace netmc::control

@@ -43,8 +43,10 @@ void TaskSpaceAdrc::begin_iteration(const Eigen::Vector2d& initial_position, std
 
 ContouringCycle TaskSpaceAdrc::step(std::size_t, const ReferencePoint& reference,
                                     const Eigen::Vector2d& q) {
-  const TaskCoordinates actual = frame_->at(q);
-  const TaskCoordinates desired = frame_->at(reference.position);
+  // Followed along the contour from the previous cycle (a contour that crosses itself would make
+  // the global foot point jump between branches).
+  const TaskCoordinates actual = frame_->near(q, rm_raw_);
+  const TaskCoordinates desired = frame_->near(reference.position, actual.rm);
   const double perimeter = frame_->perimeter_m();
   const auto wrap = [&](double difference) {
     return perimeter > 0.0 ? std::remainder(difference, perimeter) : difference;

@@ -44,8 +44,13 @@ SlidingState TaskSpaceSlidingVariable::update(std::size_t cycle, const Reference
   const double speed = reference.velocity.norm();
   if (frame_) {
     // GTCF (eq. 2-50): r_d = [0, rm(q_d)], r_d' = [0, |q_d'|] (rm is arc length along travel).
-    const TaskCoordinates actual = frame_->at(q);
-    const TaskCoordinates desired = frame_->at(reference.position);
+    // The foot points are followed along the contour from cycle to cycle (the global search
+    // alone would jump between branches where a contour crosses itself).
+    const TaskCoordinates desired = samples_seen_ == 0
+                                        ? frame_->at(reference.position)
+                                        : frame_->near(reference.position, desired_rm_ + speed * h_);
+    const TaskCoordinates actual = frame_->near(q, desired.rm);
+    desired_rm_ = desired.rm;
     const double perimeter = frame_->perimeter_m();
     const auto wrap = [perimeter](double d) { return perimeter > 0.0 ? std::remainder(d, perimeter) : d; };
     out.jacobian = actual.jacobian;

@@ -68,6 +68,7 @@ class TaskSpaceSlidingVariable {
   Eigen::Vector2d earlier_position_ = Eigen::Vector2d::Zero();  // two samples back
   int samples_seen_ = 0;
   Eigen::Vector2d previous_equivalent_velocity_ = Eigen::Vector2d::Zero();
+  double desired_rm_ = 0.0;  // rm of the previous reference, where the next is sought
 };
 
 }  // namespace netmc::control

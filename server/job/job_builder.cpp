@@ -2,14 +2,20 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "control/circle_trajectory.hpp"
+#include "control/cubic_spline_curve.hpp"
 #include "control/ellipse_trajectory.hpp"
+#include "control/feed_rate_trajectory.hpp"
 #include "control/halted_trajectory.hpp"
 #include "control/line_trajectory.hpp"
+#include "control/lissajous_trajectory.hpp"
+#include "control/polyline_trajectory.hpp"
 #include "plant/plant_catalog.hpp"
 
 namespace netmc::job {
@@ -17,6 +23,23 @@ namespace {
 
 using netmc::v1::DelayProfile;
 using netmc::v1::LossProfile;
+
+std::vector<Eigen::Vector2d> build_points(const google::protobuf::RepeatedPtrField<netmc::v1::Point2>& points) {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(static_cast<std::size_t>(points.size()));
+  for (const auto& p : points) out.emplace_back(p.x_m(), p.y_m());
+  return out;
+}
+
+control::FeedRateLimits build_feed(const netmc::v1::FeedRate& f) {
+  control::FeedRateLimits limits;
+  limits.feed_m_s = f.feed_m_s();
+  limits.normal_acceleration_m_s2 = f.max_normal_acceleration_m_s2();
+  limits.tangential_acceleration_m_s2 = f.max_tangential_acceleration_m_s2() == 0.0
+                                            ? f.max_normal_acceleration_m_s2()
+                                            : f.max_tangential_acceleration_m_s2();
+  return limits;
+}
 
 std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1::Trajectory& t) {
   switch (t.shape_case()) {
@@ -41,6 +64,15 @@ std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1:
       p.start_angle_rad = e.start_angle_rad();
       p.clockwise = e.clockwise();
       p.revolutions = e.revolutions() == 0.0 ? 1.0 : e.revolutions();
+      if (e.has_feed()) {
+        if (p.revolutions != 1.0) {
+          throw std::invalid_argument("ellipse revolutions: a feed-rate ellipse runs one revolution, got " +
+                                      std::to_string(p.revolutions));
+        }
+        p.period_s = 1.0;  // unused: the feed times the motion
+        return std::make_shared<control::FeedRateTrajectory>(std::make_shared<control::EllipseCurve>(p),
+                                                             build_feed(e.feed()));
+      }
       return std::make_shared<control::EllipseTrajectory>(p);
     }
     case netmc::v1::Trajectory::kLine: {
@@ -51,10 +83,41 @@ std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1:
       p.duration_s = l.duration_s();
       return std::make_shared<control::LineTrajectory>(p);
     }
+    case netmc::v1::Trajectory::kLissajous: {
+      const auto& l = t.lissajous();
+      control::LissajousParameters p;
+      p.center = {l.center_x_m(), l.center_y_m()};
+      p.amplitude_x_m = l.amplitude_x_m();
+      p.amplitude_y_m = l.amplitude_y_m();
+      p.frequency_x = static_cast<int>(std::min<std::uint32_t>(l.frequency_x(), 1000000));
+      p.frequency_y = static_cast<int>(std::min<std::uint32_t>(l.frequency_y(), 1000000));
+      p.phase_rad = l.phase_rad();
+      if (l.has_feed()) {
+        return std::make_shared<control::FeedRateTrajectory>(std::make_shared<control::LissajousCurve>(p),
+                                                             build_feed(l.feed()));
+      }
+      p.period_s = l.period_s();
+      return std::make_shared<control::LissajousTrajectory>(p);
+    }
+    case netmc::v1::Trajectory::kPolyline: {
+      const auto& l = t.polyline();
+      control::PolylineParameters p;
+      p.points = build_points(l.points());
+      p.max_speed_m_s = l.max_speed_m_s();
+      p.max_acceleration_m_s2 = l.max_acceleration_m_s2();
+      p.corner_speed_m_s = l.corner_speed_m_s();
+      return std::make_shared<control::PolylineTrajectory>(p);
+    }
+    case netmc::v1::Trajectory::kSpline: {
+      const auto& s = t.spline();
+      auto curve = std::make_shared<control::CubicSplineCurve>(build_points(s.points()));
+      return std::make_shared<control::FeedRateTrajectory>(std::move(curve), build_feed(s.feed()));
+    }
     case netmc::v1::Trajectory::SHAPE_NOT_SET:
       break;
   }
-  throw std::invalid_argument("trajectory: missing (expected circle, ellipse or line)");
+  throw std::invalid_argument(
+      "trajectory: missing (expected circle, ellipse, line, lissajous, polyline or spline)");
 }
 
 std::shared_ptr<const control::ReferenceTrajectory> build_trajectory(

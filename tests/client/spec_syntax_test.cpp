@@ -55,6 +55,72 @@ TEST(SpecSyntax, Trajectories) {
             std::string::npos);
 }
 
+TEST(SpecSyntax, ContourLibraryTrajectories) {
+  const auto figure = parse_trajectory("lissajous:ax=20mm,ay=15mm,p=3,q=2,period=12s,phase=0.3,cx=50mm,cy=40mm");
+  ASSERT_TRUE(figure.has_lissajous());
+  EXPECT_DOUBLE_EQ(figure.lissajous().amplitude_x_m(), 0.02);
+  EXPECT_DOUBLE_EQ(figure.lissajous().amplitude_y_m(), 0.015);
+  EXPECT_EQ(figure.lissajous().frequency_x(), 3u);
+  EXPECT_EQ(figure.lissajous().frequency_y(), 2u);
+  EXPECT_DOUBLE_EQ(figure.lissajous().phase_rad(), 0.3);
+  EXPECT_DOUBLE_EQ(figure.lissajous().center_y_m(), 0.04);
+  EXPECT_DOUBLE_EQ(figure.lissajous().period_s(), 12.0);
+  EXPECT_FALSE(figure.lissajous().has_feed());
+  const auto fed = parse_trajectory("lissajous:ax=20mm,ay=15mm,p=3,q=2,feed=15mm/s,amax=20mm/s2");
+  EXPECT_DOUBLE_EQ(fed.lissajous().feed().feed_m_s(), 0.015);
+  EXPECT_DOUBLE_EQ(fed.lissajous().feed().max_normal_acceleration_m_s2(), 0.02);
+  EXPECT_DOUBLE_EQ(fed.lissajous().feed().max_tangential_acceleration_m_s2(), 0.0);  // = amax
+
+  const auto ellipse = parse_trajectory("ellipse:a=20mm,b=5mm,feed=20mm/s,amax=30mm/s2,at=0.1");
+  EXPECT_DOUBLE_EQ(ellipse.ellipse().feed().feed_m_s(), 0.02);
+  EXPECT_DOUBLE_EQ(ellipse.ellipse().feed().max_tangential_acceleration_m_s2(), 0.1);
+  EXPECT_DOUBLE_EQ(ellipse.ellipse().period_s(), 0.0);
+  EXPECT_FALSE(parse_trajectory("ellipse:a=20mm,b=5mm,period=8s").ellipse().has_feed());
+
+  const auto square = parse_trajectory("polyline:points=0,0;20mm,0;20mm,10mm;0,10mm;0,0,vmax=10mm/s,amax=50mm/s^2,corner=2mm/s");
+  ASSERT_TRUE(square.has_polyline());
+  ASSERT_EQ(square.polyline().points_size(), 5);
+  EXPECT_DOUBLE_EQ(square.polyline().points(2).x_m(), 0.02);
+  EXPECT_DOUBLE_EQ(square.polyline().points(2).y_m(), 0.01);
+  EXPECT_DOUBLE_EQ(square.polyline().max_speed_m_s(), 0.01);
+  EXPECT_DOUBLE_EQ(square.polyline().max_acceleration_m_s2(), 0.05);
+  EXPECT_DOUBLE_EQ(square.polyline().corner_speed_m_s(), 0.002);
+  // The points may also come last, and SI values need no suffix.
+  const auto last = parse_trajectory("polyline:vmax=0.01,amax=0.05,points=0,0;0.01,0");
+  EXPECT_EQ(last.polyline().points_size(), 2);
+  EXPECT_DOUBLE_EQ(last.polyline().points(1).x_m(), 0.01);
+
+  const auto spline = parse_trajectory("spline:points=0,0;30mm,-5mm;50mm,10mm;0,0,feed=20mm/s,amax=0.05m/s2,at=100mm/s2");
+  ASSERT_TRUE(spline.has_spline());
+  EXPECT_EQ(spline.spline().points_size(), 4);
+  EXPECT_DOUBLE_EQ(spline.spline().points(1).y_m(), -0.005);
+  EXPECT_DOUBLE_EQ(spline.spline().feed().feed_m_s(), 0.02);
+  EXPECT_DOUBLE_EQ(spline.spline().feed().max_normal_acceleration_m_s2(), 0.05);
+  EXPECT_DOUBLE_EQ(spline.spline().feed().max_tangential_acceleration_m_s2(), 0.1);
+
+  const auto error = [](const char* text) { return error_of([&] { parse_trajectory(text); }); };
+  EXPECT_NE(error("lissajous:ax=20mm,ay=15mm,p=1.5,q=2,period=8s").find("--trajectory p: expected a positive whole number"),
+            std::string::npos);
+  EXPECT_NE(error("lissajous:ax=20mm,ay=15mm,p=3,q=0,period=8s").find("--trajectory q"), std::string::npos);
+  EXPECT_NE(error("lissajous:ax=20mm,ay=15mm,p=3,q=2").find("missing key 'period'"), std::string::npos);
+  EXPECT_NE(error("lissajous:ax=20mm,ay=15mm,p=3,q=2,period=8s,feed=1mm/s,amax=1mm/s2").find("not both"),
+            std::string::npos);
+  EXPECT_NE(error("ellipse:a=20mm,b=5mm,period=8s,amax=1").find("ellipse takes period"), std::string::npos);
+  EXPECT_NE(error("polyline:points=0,0;10mm,vmax=1mm/s,amax=1mm/s2").find("--trajectory points: point 2: expected X,Y"),
+            std::string::npos);
+  EXPECT_NE(error("polyline:points=0,0;10mm,0,0,vmax=1mm/s,amax=1mm/s2").find("point 2"), std::string::npos);
+  EXPECT_NE(error("polyline:points=0,0;10cm,0,vmax=1mm/s,amax=1mm/s2").find("point 2 x: expected a length"),
+            std::string::npos);
+  EXPECT_NE(error("polyline:vmax=1mm/s,amax=1mm/s2").find("missing key 'points'"), std::string::npos);
+  EXPECT_NE(error("polyline:points=0,0;1mm,0,vmax=1mm,amax=1mm/s2").find("--trajectory vmax: expected a speed"),
+            std::string::npos);
+  EXPECT_NE(error("spline:points=0,0;1mm,0,feed=1mm/s,amax=5ms").find("--trajectory amax: expected an acceleration"),
+            std::string::npos);
+  EXPECT_NE(error("spline:points=0,0;1mm,0,feed=1mm/s").find("missing key 'amax'"), std::string::npos);
+  // A stray value without a key is still refused outside a list.
+  EXPECT_NE(error("spline:feed=1mm/s,2,points=0,0;1mm,0,amax=1").find("expected key=value"), std::string::npos);
+}
+
 TEST(SpecSyntax, DelaysAndLosses) {
   const auto uniform = parse_delay("uniform:min=0.3ms,max=0.8ms", "--delay");
   EXPECT_DOUBLE_EQ(uniform.uniform().min_s(), 0.3e-3);

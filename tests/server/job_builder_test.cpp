@@ -42,6 +42,42 @@ TEST(JobBuilder, JsonSpecWithDefaults) {
   EXPECT_NEAR(job.downlink.delay->mean_s(), 0.00055, 1e-15);
 }
 
+TEST(JobBuilder, ContourLibraryShapesFromJson) {
+  const auto build = [](const std::string& trajectory) {
+    auto spec = parse_job_spec_json(R"({"trajectory": )" + trajectory + "}", "test");
+    apply_defaults(spec);
+    return build_contour_job(spec);
+  };
+  const auto figure = build(R"({"lissajous": {"amplitude_x_m": 0.02, "amplitude_y_m": 0.015, "frequency_x": 3,
+                                               "frequency_y": 2, "center_x_m": 0.05, "center_y_m": 0.05, "period_s": 20}})");
+  EXPECT_DOUBLE_EQ(figure.trajectory->duration_s(), 20.0);
+  EXPECT_NEAR(figure.trajectory->sample(0.0).position.y(), 0.05, 1e-15);
+  const auto fed = build(R"({"lissajous": {"amplitude_x_m": 0.02, "amplitude_y_m": 0.015, "frequency_x": 3,
+                                            "frequency_y": 2, "feed": {"feed_m_s": 0.01, "max_normal_acceleration_m_s2": 0.02}}})");
+  EXPECT_LT(fed.trajectory->sample(0.0).velocity.norm(), 1e-15);  // from rest
+  EXPECT_NE(fed.trajectory->describe().find("feed=10 mm/s"), std::string::npos);
+  const auto square = build(R"({"polyline": {"points": [{"x_m": 0, "y_m": 0}, {"x_m": 0.02, "y_m": 0}, {"x_m": 0.02, "y_m": 0.01}],
+                                             "max_speed_m_s": 0.01, "max_acceleration_m_s2": 0.05}})");
+  EXPECT_NEAR(square.trajectory->duration_s(), (0.02 / 0.01 + 0.2) + (0.01 / 0.01 + 0.2), 1e-12);
+  const auto spline = build(R"({"spline": {"points": [{"x_m": 0, "y_m": 0}, {"x_m": 0.03, "y_m": -0.005}, {"x_m": 0.05, "y_m": 0.01},
+                                                       {"x_m": 0.02, "y_m": 0.02}, {"x_m": 0, "y_m": 0}],
+                                            "feed": {"feed_m_s": 0.02, "max_normal_acceleration_m_s2": 0.05}}})");
+  EXPECT_LT(spline.trajectory->sample(spline.trajectory->duration_s()).position.norm(), 1e-15);
+
+  const auto error = [&](const std::string& trajectory) {
+    auto spec = parse_job_spec_json(R"({"trajectory": )" + trajectory + "}", "test");
+    apply_defaults(spec);
+    return error_of(spec);
+  };
+  EXPECT_NE(error(R"({"polyline": {"points": [{"x_m": 0}], "max_speed_m_s": 0.01, "max_acceleration_m_s2": 0.05}})")
+                .find("trajectory: polyline points: expected at least two points"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"spline": {"points": [{"x_m": 0}, {"x_m": 0.01}]}})").find("trajectory: feed"), std::string::npos);
+  EXPECT_NE(error(R"({"lissajous": {"amplitude_x_m": 0.02, "amplitude_y_m": 0.015, "frequency_x": 1, "frequency_y": 1, "period_s": 4}})")
+                .find("retraces itself"),
+            std::string::npos);
+}
+
 TEST(JobBuilder, ErrorsNameTheField) {
   auto spec = valid_spec();
   spec.mutable_controller()->set_name("adrc+fuzzy");
