@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "control/box_projection.hpp"
 #include "control/parameter_check.hpp"
 
 namespace netmc::control {
@@ -65,12 +66,8 @@ Eigen::Vector3d SpatialSarc::step(const SpatialReferencePoint& reference, const 
   // eq. 2-58/2-59: gradient adaptation with projection onto |F_l,i| <= F_M,i
   const Eigen::Vector3d direction = inverse * s;
   for (int i = 0; i < 3; ++i) {
-    const double rate = -gains_.adaptation[i] * direction[i];
-    const bool blocked = (estimate_[i] >= gains_.uncertainty_bound[i] && rate > 0.0) ||
-                         (estimate_[i] <= -gains_.uncertainty_bound[i] && rate < 0.0);
-    if (!blocked) {
-      estimate_[i] = std::clamp(estimate_[i] + h_ * rate, -gains_.uncertainty_bound[i], gains_.uncertainty_bound[i]);
-    }
+    estimate_[i] = projected_step(estimate_[i], -gains_.adaptation[i] * direction[i],
+                                  -gains_.uncertainty_bound[i], gains_.uncertainty_bound[i], h_);
   }
   earlier_position_ = previous_position_;
   previous_position_ = q;
