@@ -122,6 +122,15 @@ StudyPlan thesis_ellipse() {
   for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "gtcf-darc"}) {
     plan.jobs.push_back(thesis_job(halted, controller, std::string(controller) + " (D)", 10.0));
   }
+  // Case C with a soft tangential loop (Lambda_m = 2, K_m = 5 instead of 30, 60): the tangential
+  // error grows from 5 to 30-55 um RMS, the regime where the local frame's tangent
+  // approximation costs contour accuracy and the two frames part (thesis: GTCF 61 % better).
+  for (const char* controller : {"ltcf-sarc", "gtcf-sarc"}) {
+    auto job = thesis_job(t, controller, std::string(controller) + " (C, soft tangential)", 10.0);
+    job.mutable_controller()->mutable_task_space()->set_lambda_m(2.0);
+    job.mutable_controller()->mutable_task_space()->set_k_m(5.0);
+    plan.jobs.push_back(job);
+  }
   for (auto& job : plan.jobs) job.set_command_limit(kThesisDriveLimitV);
   return plan;
 }

@@ -37,17 +37,19 @@ namespace {
 // Studies judged after the start-up transient (thesis): steady RMS and max in um, inputs in V.
 void print_steady_table(std::ostream& out, const StudyPlan& plan,
                         const std::vector<RunOutcome>& outcomes) {
-  fmt::print(out, "{:<18} {:>17} {:>17} {:>10}  {:>11} {:>11}  {:>16} {:>16}\n", "run",
+  std::size_t width = 18;
+  for (const auto& outcome : outcomes) width = std::max(width, outcome.result.label().size());
+  fmt::print(out, "{:<{}} {:>17} {:>17} {:>10}  {:>11} {:>11}  {:>16} {:>16}\n", "run", width,
              "e_rms_steady [um]", "e_max_steady [um]", "rms/first", "u_x rms [V]", "u_y rms [V]",
              "paper rms [um]", "paper max [um]");
   const auto& first = last(outcomes.front());
   for (const auto& outcome : outcomes) {
     const auto& m = last(outcome);
     if (m.diverged()) {
-      fmt::print(out, "{:<18} unstable at t = {:.3f} s\n", outcome.result.label(), m.diverged_at_s());
+      fmt::print(out, "{:<{}} unstable at t = {:.3f} s\n", outcome.result.label(), width, m.diverged_at_s());
       continue;
     }
-    fmt::print(out, "{:<18} {:>17.2f} {:>17.2f} {:>10.3f}  {:>11.2f} {:>11.2f}", outcome.result.label(),
+    fmt::print(out, "{:<{}} {:>17.2f} {:>17.2f} {:>10.3f}  {:>11.2f} {:>11.2f}", outcome.result.label(), width,
                m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6,
                m.e_rms_steady_m() / first.e_rms_steady_m(), m.command_rms_steady(0), m.command_rms_steady(1));
     if (const PaperRow* row = paper_row(plan, outcome.result)) {
