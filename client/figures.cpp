@@ -73,15 +73,40 @@ struct TraceColumns {
         tau(t.column("tau_x_s")) {}
 };
 
+// First row of run `i`'s evaluation window (the steady metrics' window, e.g. after the thesis's
+// start-up transient), or 0 when the run has none or the trace ends before it: the figures
+// then show what the tables judge rather than a start-up peak hundreds of times larger.
+std::size_t window_start_row(const SimOutputs& outputs, std::size_t i) {
+  const double start_s = outputs.study.runs(static_cast<int>(i)).evaluation_start_s();
+  const auto& table = outputs.traces[i].table;
+  const std::size_t time = table.column("time_s");
+  if (!(start_s > 0.0)) return 0;
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    if (table.number(r, time) >= start_s) return r;
+  }
+  return 0;
+}
+
+std::string window_note(const SimOutputs& outputs) {
+  if (window_start_row(outputs, 0) == 0) return "";
+  return fmt::format(", t {} {:g} s", "\xE2\x89\xA5", outputs.study.runs(0).evaluation_start_s());
+}
+
+// "- 12.345" or "+ 12.345": the zoom axes count from the window centre.
+std::string offset(double centre_mm) {
+  return fmt::format("{} {:.3f}", centre_mm < 0.0 ? '+' : '-', std::abs(centre_mm));
+}
+
 Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
-  // Zoom where the first run's contour error peaks: the window shows every run's deviation.
+  // Zoom where the first run's contour error peaks in its evaluation window: the window shows
+  // every run's deviation.
   const auto& first = outputs.traces.front().table;
   const TraceColumns c0(first);
   std::size_t peak = 0;
   double peak_error = -1.0;
-  for (std::size_t r = 0; r < first.rows(); ++r) {
-    if (first.number(r, c0.error) > peak_error) {
-      peak_error = first.number(r, c0.error);
+  for (std::size_t r = window_start_row(outputs, 0); r < first.rows(); ++r) {
+    if (std::abs(first.number(r, c0.error)) > peak_error) {
+      peak_error = std::abs(first.number(r, c0.error));
       peak = r;
     }
   }
@@ -111,7 +136,7 @@ Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
     const auto& table = outputs.traces[i].table;
     const TraceColumns c(table);
     std::string dat = "# x_ref_mm y_ref_mm x_mm y_mm dx_ref_um dy_ref_um dx_um dy_um (zoom: relative to the window centre)\n";
-    for (std::size_t r = 0; r < table.rows(); ++r) {
+    for (std::size_t r = window_start_row(outputs, i); r < table.rows(); ++r) {
       const double xr = table.number(r, c.x_ref) * 1e3, yr = table.number(r, c.y_ref) * 1e3;
       const double x = table.number(r, c.x) * 1e3, y = table.number(r, c.y) * 1e3;
       dat += fmt::format("{:.6f} {:.6f} {:.6f} {:.6f} {:.4f} {:.4f} {:.4f} {:.4f}\n", xr, yr, x, y,
@@ -153,18 +178,18 @@ Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
       "set label 1 'zoom' at {x1:.6f},{y1:.6f} offset 0.5,0.5 tc rgb '#e6550d' front\n"
       "{full}\n"
       "unset object 1\nunset label 1\nset autoscale\n"
-      "set title \"Zoom ({w:.0f} {mu}m square) where {first}'s error peaks\" font ',12'\n"
+      "set title \"Zoom ({w:.0f} {mu}m square) where {first}'s error peaks{window}\" font ',12'\n"
       "set xrange [{mh:.4f}:{ph:.4f}]\nset yrange [{mh:.4f}:{ph:.4f}]\n"
-      "set xlabel 'x - {cx:.3f} mm [{mu}m]'\nset ylabel 'y - {cy:.3f} mm [{mu}m]'\n"
+      "set xlabel 'x {cx} mm [{mu}m]'\nset ylabel 'y {cy} mm [{mu}m]'\n"
       "set key bottom right box opaque samplen 3 font ',10'\n"
       "{zoom}\n",
       fmt::arg("fx0", x_lo - margin), fmt::arg("fx1", x_hi + margin),
       fmt::arg("fy0", y_lo - margin), fmt::arg("fy1", y_hi + margin),
       fmt::arg("x0", cx_mm - half_mm), fmt::arg("y0", cy_mm - half_mm), fmt::arg("x1", cx_mm + half_mm),
       fmt::arg("y1", cy_mm + half_mm), fmt::arg("full", plot_full), fmt::arg("zoom", plot_zoom),
-      fmt::arg("w", 2 * half_um), fmt::arg("cx", cx_mm), fmt::arg("cy", cy_mm), fmt::arg("mh", -half_um),
+      fmt::arg("w", 2 * half_um), fmt::arg("cx", offset(cx_mm)), fmt::arg("cy", offset(cy_mm)), fmt::arg("mh", -half_um),
       fmt::arg("ph", half_um), fmt::arg("mu", "\xC2\xB5"),
-      fmt::arg("first", plain(outputs.traces.front().label)));
+      fmt::arg("first", plain(outputs.traces.front().label)), fmt::arg("window", window_note(outputs)));
   return figure;
 }
 
@@ -173,19 +198,21 @@ Figure contour_error_figure(const SimOutputs& outputs, const std::string& data_d
   Figure figure;
   figure.name = "contour_error";
   figure.width_px = 1100;
-  figure.height_px = static_cast<int>(std::max<std::size_t>(2, n)) * 190 + 80;
+  figure.height_px = static_cast<int>(std::max<std::size_t>(2, n)) * 190 + 110;
+  // Fixed room in pixels at the top (title) and bottom (tick labels and the time label).
+  const double bottom = 70.0 / figure.height_px, top = 1.0 - 45.0 / figure.height_px;
   std::string body = std::string(kStyle) + fmt::format(
-      "set multiplot layout {},1 title \"Contour error vs time (last iteration of each run)\" font ',13' "
-      "margins 0.09,0.97,0.08,0.92 spacing 0,0.045\n"
+      "set multiplot layout {},1 title \"Contour error vs time (last iteration of each run{})\" font ',13' "
+      "margins 0.09,0.97,{:.4f},{:.4f} spacing 0,0.045\n"
       "set key top right box opaque samplen 1 font ',10'\nset ylabel 'e_c [{}m]'\nset format y '%g'\n"
       "set offsets 0, 0, graph 0.35, graph 0.05\n",
-      n, "\xC2\xB5");
+      n, window_note(outputs), bottom, top, "\xC2\xB5");
   for (std::size_t i = 0; i < n; ++i) {
     const auto& table = outputs.traces[i].table;
     const TraceColumns c(table);
     std::string dat = "# time_s contour_error_um\n";
     double max_um = 0.0;
-    for (std::size_t r = 0; r < table.rows(); ++r) {
+    for (std::size_t r = window_start_row(outputs, i); r < table.rows(); ++r) {
       const double e_um = table.number(r, c.error) * 1e6;
       max_um = std::max(max_um, std::abs(e_um));
       dat += fmt::format("{:.6f} {:.5f}\n", table.number(r, c.time), e_um);

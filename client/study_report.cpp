@@ -4,6 +4,7 @@
 #include <fmt/ostream.h>
 
 #include <algorithm>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -49,9 +50,14 @@ void print_steady_table(std::ostream& out, const StudyPlan& plan,
       fmt::print(out, "{:<{}} unstable at t = {:.3f} s\n", outcome.result.label(), width, m.diverged_at_s());
       continue;
     }
+    if (m.e_rms_steady_m() == 0.0 && m.e_max_steady_m() == 0.0) {  // no sample in the window
+      fmt::print(out, "{:<{}} no steady metrics: the run ends before its evaluation window (t >= {:g} s)\n",
+                 outcome.result.label(), width, outcome.result.evaluation_start_s());
+      continue;
+    }
     fmt::print(out, "{:<{}} {:>17.2f} {:>17.2f} {:>10.3f}  {:>11.2f} {:>11.2f}", outcome.result.label(), width,
                m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6,
-               m.e_rms_steady_m() / first.e_rms_steady_m(), m.command_rms_steady(0), m.command_rms_steady(1));
+               first.e_rms_steady_m() > 0.0 ? m.e_rms_steady_m() / first.e_rms_steady_m() : std::numeric_limits<double>::quiet_NaN(), m.command_rms_steady(0), m.command_rms_steady(1));
     if (const PaperRow* row = paper_row(plan, outcome.result)) {
       fmt::print(out, "  {:>16.2f} {:>16.2f}", row->e_max_m * 1e6, row->e_sum_m * 1e6);
     }

@@ -30,6 +30,7 @@ std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_
         sim::ContourJobRunner runner(std::move(jobs[i]));
         RunOutcome& out = outcomes[i];
         out.result = job::describe_run(spec, runner.controller_description());
+        out.result.set_evaluation_start_s(runner.job().evaluation_start());
         runner.run_all([&](const sim::IterationRecord& record) {
           *out.result.add_iterations() = job::to_proto(record.metrics);
           if (record_traces) out.last_trace = record.trace;

@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <string>
 
 #include "tests/client/netmc_in_process.hpp"
 #include "client/gnuplot.hpp"
@@ -61,6 +63,50 @@ TEST(PlotRender, SimPlotDrawsTheStandardFigures) {
   EXPECT_FALSE(fs::exists(again / "contour.svg"));
   fs::remove_all(dir);
   fs::remove_all(again);
+}
+
+// Double of a data file's first data row's first column (after the # header).
+double first_value(const fs::path& path) {
+  std::ifstream file(path);
+  std::string line;
+  while (std::getline(file, line) && line.starts_with('#')) {
+  }
+  return std::stod(line);
+}
+
+double max_abs_second_column(const fs::path& path) {
+  std::ifstream file(path);
+  std::string line;
+  double max = 0.0;
+  while (std::getline(file, line)) {
+    if (line.starts_with('#')) continue;
+    std::istringstream row(line);
+    double time = 0.0, value = 0.0;
+    row >> time >> value;
+    max = std::max(max, std::abs(value));
+  }
+  return max;
+}
+
+// A study judged after its start-up transient (thesis presets): the error figure and the zoom
+// cover the evaluation window, so the peak they show is the steady maximum of the table.
+TEST(PlotRender, SteadyStudyFiguresShowTheEvaluationWindow) {
+  if (!find_gnuplot()) GTEST_SKIP() << "gnuplot is not installed (Debian package gnuplot-nox)";
+  const auto dir = scratch("steady");
+  const auto json_path = fs::temp_directory_path() / "netmc_plot_test_steady.json";
+  ASSERT_EQ(netmc({"sim", "--preset", "thesis-ellipse", "--controller", "gtcf-sarc", "--duration", "11s",
+                   "--plot", dir.string(), "--json", json_path.string(), "-q"}),
+            0);
+  EXPECT_NEAR(first_value(dir / "data" / "contour_error-1.dat"), 10.0, 2e-4);  // the preset's window
+  std::ifstream json(json_path);
+  const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  const auto at = text.find("\"e_max_steady_m\":");
+  ASSERT_NE(at, std::string::npos);
+  const double e_max_steady_um = std::stod(text.substr(at + 17)) * 1e6;
+  EXPECT_GT(e_max_steady_um, 0.5);
+  EXPECT_NEAR(max_abs_second_column(dir / "data" / "contour_error-1.dat"), e_max_steady_um, 0.01);
+  fs::remove_all(dir);
+  fs::remove(json_path);
 }
 
 TEST(PlotRender, SweepPlotDrawsMetricVsDelay) {
