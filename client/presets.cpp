@@ -241,7 +241,7 @@ StudyPlan thesis_ellipse_delay() {
   // that many periods late (GtcfAdrcGains::observer_input_delay), default bandwidths otherwise.
   const unsigned mean_delay_periods[] = {0, 2, 3, 5, 10, 15};
   const netmc::v1::Trajectory trajectory = thesis_ellipse_motion(0.2, 0.02, 7.0, 10.0);
-  for (const char* run : {"ltcf-sarc", "gtcf-sarc", "gtcf-adrc", "gtcf-adrc-matched", "gtcf-adrc-soft", "adrc",
+  for (const char* run : {"ltcf-sarc", "gtcf-sarc", "gtcf-darc", "gtcf-adrc", "gtcf-adrc-matched", "gtcf-adrc-soft", "adrc",
                           "adrc+pidccc"}) {
     const std::string_view label(run);
     for (std::size_t column = 0; column < delays.size(); ++column) {
