@@ -49,7 +49,7 @@ netmc::v1::JobSpec seed001_job(const std::string& controller) {
 
 std::vector<std::string> preset_names() {
   return {"seed001", "seed001-ellipse", "seed001-line", "seed001-long-delay", "seed001-bursty",
-          "thesis-ellipse", "thesis-circle", "thesis-darc", "thesis-ellipse-delay"};
+          "thesis-ellipse", "thesis-circle", "thesis-darc", "thesis-ellipse-delay", "thesis-spatial"};
 }
 
 namespace {
@@ -222,10 +222,9 @@ void set_linmotor_adrc_gains(netmc::v1::ControllerSpec& controller) {
 // The thesis ellipse (eq. 2-68) under loop delay on the controller->actuator link, for the two
 // SARC parents, GTCF-ADRC (default and delay-margin tunings) and per-axis ADRC: 10 s runs (50 k cycles at 0.2 ms), steady metrics
 // over 4-10 s (the start from rest with the reference at 1.4 m/s has settled by then).
-StudyPlan thesis_ellipse_delay() {
-  StudyPlan plan;
-  plan.title = "thesis ellipse (eq. 2-68) under loop delay: 10 s, metrics over 4-10 s, linear motors, h = 0.2 ms";
-  plan.steady_metrics = true;
+// The loop delays the thesis studies are run under (0.2 ms sampling): none, short random ones
+// (U(0.1, 0.5) ms is beyond one period), then constant 1, 2 and 3 ms.
+std::vector<netmc::v1::DelayProfile> thesis_delay_columns() {
   std::vector<netmc::v1::DelayProfile> delays(6);
   delays[0].mutable_none();
   delays[1].mutable_uniform()->set_min_s(0.1e-3);
@@ -235,6 +234,14 @@ StudyPlan thesis_ellipse_delay() {
   delays[3].set_constant_s(1e-3);
   delays[4].set_constant_s(2e-3);
   delays[5].set_constant_s(3e-3);
+  return delays;
+}
+
+StudyPlan thesis_ellipse_delay() {
+  StudyPlan plan;
+  plan.title = "thesis ellipse (eq. 2-68) under loop delay: 10 s, metrics over 4-10 s, linear motors, h = 0.2 ms";
+  plan.steady_metrics = true;
+  const std::vector<netmc::v1::DelayProfile> delays = thesis_delay_columns();
   // gtcf-adrc-soft: GTCF-ADRC retuned for delay margin (w_c = 120, w_m = 60, observers 4x),
   // the most accurate of the tunings tried that hold 2 ms constant delay.
   // Mean delay of each column in periods: gtcf-adrc-matched feeds its observers the task command
@@ -268,6 +275,35 @@ StudyPlan thesis_ellipse_delay() {
       *job.mutable_downlink()->mutable_delay() = delay;
       plan.jobs.push_back(job);
     }
+  }
+  return plan;
+}
+
+// Thesis ch. 6 (theory only there): GTCF-SARC on a 50 mm circle in a plane tilted out of all
+// three axes (normal (-1, 1, 0.5)), 4 rad/s (0.2 m/s), three linear-motor axes (the third copies
+// Y), h = 0.2 ms, 0.5 um encoders, 8 V drives; 6 revolutions, metrics after the first two; no
+// delay, then the loop delays of thesis-ellipse-delay (thesis_delay_columns).
+StudyPlan thesis_spatial() {
+  StudyPlan plan = thesis_plan("thesis ch. 6: GTCF-SARC on a tilted 50 mm circle in space, three linear-motor axes, "
+                               "Ts = 0.2 ms, under loop delay",
+                               {}, "");
+  netmc::v1::Trajectory t;
+  auto& c = *t.mutable_spatial_circle();
+  c.set_center_x_m(0.10);
+  c.set_center_y_m(0.10);
+  c.set_center_z_m(0.05);
+  c.set_radius_m(0.05);
+  c.set_normal_x(-1.0);
+  c.set_normal_y(1.0);
+  c.set_normal_z(0.5);
+  c.set_start_z(1.0);
+  c.set_period_s(2.0 * std::numbers::pi / 4.0);
+  c.set_revolutions(6.0);
+  for (const auto& delay : thesis_delay_columns()) {
+    auto job = thesis_job(t, "gtcf-sarc", "gtcf-sarc, 3 axes", 0.0);
+    job.set_command_limit(kThesisDriveLimitV);
+    *job.mutable_downlink()->mutable_delay() = delay;
+    plan.jobs.push_back(job);
   }
   return plan;
 }
@@ -326,6 +362,7 @@ StudyPlan make_preset(std::string_view name) {
   if (name == "thesis-circle") return thesis_circle();
   if (name == "thesis-darc") return thesis_darc();
   if (name == "thesis-ellipse-delay") return thesis_ellipse_delay();
+  if (name == "thesis-spatial") return thesis_spatial();
   std::string expected;
   for (const auto& n : preset_names()) expected += (expected.empty() ? "" : ", ") + n;
   throw std::invalid_argument("--preset: unknown name '" + std::string(name) +

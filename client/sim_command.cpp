@@ -4,16 +4,17 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <thread>
 
 #include "client/figures.hpp"
 #include "client/plot_command.hpp"
-
 #include "client/study_flags.hpp"
 #include "client/study_report.hpp"
 #include "client/study_runner.hpp"
+#include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
 
@@ -62,6 +63,10 @@ every run. Output files are written whole, after every run has finished.)");
     const FigureFormats formats = parse_figure_formats(flags->plot_format, "--plot-format");
     if (!flags->plot_dir.empty()) require_gnuplot();
     const bool traces = !flags->csv_dir.empty() || !flags->plot_dir.empty();
+    if (traces && std::any_of(plan.jobs.begin(), plan.jobs.end(), job::is_spatial_job)) {
+      throw std::invalid_argument(std::string(flags->plot_dir.empty() ? "--csv" : "--plot") +
+                                  ": three-axis runs keep no per-cycle traces yet; use --json for their metrics");
+    }
     spdlog::info("sim: {} runs on {} threads", plan.jobs.size(), threads);
     const auto outcomes = run_study_in_process(plan, traces, threads);
     // Outputs are rendered completely before any file is written.

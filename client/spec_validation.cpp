@@ -30,8 +30,9 @@ Range range_of(const std::string& path, const std::string& name) {
                                               "r0", "w0", "b0", "scale_s", "shape"};
   static const std::set<std::string> probability{"p", "p_good_to_bad", "p_bad_to_good",
                                                  "loss_in_good", "loss_in_bad", "forgetting"};
-  static const std::set<std::string> any{"center_x_m", "center_y_m", "x0_m", "y0_m", "x1_m", "y1_m",
-                                         "start_angle_rad"};
+  static const std::set<std::string> any{"center_x_m", "center_y_m", "center_z_m", "x0_m", "y0_m", "x1_m", "y1_m",
+                                         "start_angle_rad", "normal_x", "normal_y", "normal_z",
+                                         "start_x", "start_y", "start_z"};
   if (ends_with(path, "line.duration_s")) return Range::positive;
   if (positive.contains(name)) return Range::positive;
   if (probability.contains(name)) return Range::probability;

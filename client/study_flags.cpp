@@ -130,7 +130,11 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
                             !f.command_limit.empty() || !f.divergence_limit.empty() || !f.clock.empty();
     for (const auto& job : plan.jobs) {
       try {
-        job::build_contour_job(job);
+        if (job::is_spatial_job(job)) {
+          job::build_spatial_job(job);
+        } else {
+          job::build_contour_job(job);
+        }
       } catch (const std::invalid_argument& error) {
         throw std::invalid_argument(f.spec_file + (overridden ? " (with the flags given): " : ": ") + error.what());
       }
@@ -144,7 +148,7 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--clock", flags.clock,
                   "Distributed runs: lockstep (virtual time, equals sim) or realtime (wall clock)")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
-  app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty, thesis-ellipse, thesis-circle, thesis-darc, thesis-ellipse-delay");
+  app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty, thesis-ellipse, thesis-circle, thesis-darc, thesis-ellipse-delay, thesis-spatial");
   app->add_option("--spec", flags.spec_file, "Job spec as JSON (protobuf JSON mapping of netmc.v1.JobSpec)");
   app->add_option("--trajectory", flags.trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. (or feed=..,amax=.. instead of period) | line:x0=..,y0=..,x1=..,y1=..,duration=.. | "
                   "lissajous:ax=20mm,ay=15mm,p=3,q=2,period=20s[,phase=..,cx=..,cy=..] (or feed=..,amax=.. instead of period) | "

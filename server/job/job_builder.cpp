@@ -1,5 +1,6 @@
 #include "server/job/job_builder.hpp"
 
+#include <fmt/format.h>
 #include <google/protobuf/util/json_util.h>
 
 #include <algorithm>
@@ -113,6 +114,10 @@ std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1:
       auto curve = std::make_shared<control::CubicSplineCurve>(build_points(s.points()));
       return std::make_shared<control::FeedRateTrajectory>(std::move(curve), build_feed(s.feed()));
     }
+    case netmc::v1::Trajectory::kSpatialCircle:
+      throw std::invalid_argument(
+          "trajectory.spatial_circle: a three-axis contour runs in-process only (netmc sim), "
+          "not on the two-axis contour groups of netmc-server");
     case netmc::v1::Trajectory::SHAPE_NOT_SET:
       break;
   }
@@ -338,7 +343,84 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   return job;
 }
 
+bool is_spatial_job(const netmc::v1::JobSpec& spec) { return spec.trajectory().has_spatial_circle(); }
+
+sim::SpatialJob build_spatial_job(const netmc::v1::JobSpec& spec) {
+  const auto& c = spec.trajectory().spatial_circle();
+  if (spec.controller().name() != "gtcf-sarc") {
+    throw std::invalid_argument("controller: a three-axis contour runs gtcf-sarc, got '" +
+                                spec.controller().name() + "'");
+  }
+  if (spec.uplink().has_delay() || spec.uplink().has_loss()) {
+    throw std::invalid_argument("uplink: a three-axis job models the downlink only; expected none");
+  }
+  if (spec.iterations() > 1) {
+    throw std::invalid_argument("iterations: a three-axis job runs one pass (GTCF-SARC does not learn); expected 1");
+  }
+  if (spec.has_initial_position() || spec.trajectory().has_halt()) {
+    throw std::invalid_argument("trajectory.spatial_circle: starts on the contour; initial_position and halt are two-axis only");
+  }
+  sim::SpatialJob job;
+  job.circle.center = Eigen::Vector3d(c.center_x_m(), c.center_y_m(), c.center_z_m());
+  job.circle.radius_m = c.radius_m();
+  job.circle.normal = Eigen::Vector3d(c.normal_x(), c.normal_y(), c.normal_z());
+  job.circle.start = Eigen::Vector3d(c.start_x(), c.start_y(), c.start_z());
+  job.circle.period_s = c.period_s();
+  job.revolutions = c.revolutions() > 0.0 ? c.revolutions() : 4.0;
+  job.plant_name = spec.plant();
+  in_field("plant", [&] { return plant::make_plant_set(spec.plant(), 3).description; });
+  // Task coordinates [rc1, rc2, rm]: both contour coordinates take the contour gains.
+  const auto& t = spec.controller().task_space();
+  if (t.has_lambda_c()) job.gains.lambda[0] = job.gains.lambda[1] = t.lambda_c();
+  if (t.has_lambda_m()) job.gains.lambda[2] = t.lambda_m();
+  if (t.has_k_c()) job.gains.feedback[0] = job.gains.feedback[1] = t.k_c();
+  if (t.has_k_m()) job.gains.feedback[2] = t.k_m();
+  job.downlink = build_link(spec.downlink(), "downlink");
+  job.sensor.resolution_m = spec.sensor().resolution_m();
+  job.sensor.noise_stddev_m = spec.sensor().noise_stddev_m();
+  job.sample_period_s = spec.sample_period_s();
+  if (spec.duration_s() > 0.0) job.revolutions = spec.duration_s() / c.period_s();
+  if (!(spec.evaluation_start_s() >= 0.0)) {
+    throw std::invalid_argument("evaluation_start: expected a non-negative duration");
+  }
+  job.evaluation_start_s = spec.evaluation_start_s();
+  if (spec.command_limit() != 0.0) job.command_limit = spec.command_limit();
+  if (spec.divergence_limit_m() != 0.0) job.divergence_limit_m = spec.divergence_limit_m();
+  job.seed = spec.seed();
+  in_field("trajectory.spatial_circle", [&] {
+    job.validate();
+    return 0;
+  });
+  return job;
+}
+
+netmc::v1::IterationMetrics to_proto(const sim::SpatialIterationMetrics& m) {
+  netmc::v1::IterationMetrics out;
+  out.set_iteration(1);
+  out.set_e_max_m(m.e_max_m);
+  out.set_e_rms_m(m.e_rms_m);
+  out.set_e_sum_m(m.e_sum_m);
+  out.set_e_rms_steady_m(m.e_rms_steady_m);
+  out.set_e_max_steady_m(m.e_max_steady_m);
+  out.set_tau_mean_s(m.tau_mean_s);
+  out.set_tau_p99_s(m.tau_p99_s);
+  out.set_tau_max_s(m.tau_max_s);
+  for (const double v : m.tracking_rms_m) out.add_tracking_rms_m(v);
+  for (const double v : m.command_rms_steady) out.add_command_rms_steady(v);
+  out.set_lost_setpoints(static_cast<std::uint32_t>(m.lost_setpoints));
+  out.set_stale_setpoints(static_cast<std::uint32_t>(m.stale_setpoints));
+  out.set_diverged(m.diverged);
+  out.set_diverged_at_s(m.diverged_at_s);
+  return out;
+}
+
 std::string describe_trajectory(const netmc::v1::Trajectory& trajectory) {
+  if (trajectory.has_spatial_circle()) {
+    const auto& c = trajectory.spatial_circle();
+    return fmt::format("spatial circle(r={:g} mm, centre=({:g}, {:g}, {:g}) mm, normal=({:g}, {:g}, {:g}), period={:g} s)",
+                       c.radius_m() * 1e3, c.center_x_m() * 1e3, c.center_y_m() * 1e3, c.center_z_m() * 1e3,
+                       c.normal_x(), c.normal_y(), c.normal_z(), c.period_s());
+  }
   return build_trajectory(trajectory)->describe();
 }
 

@@ -7,6 +7,7 @@
 #include "idl/job.pb.h"
 #include "server/sim/contour_job.hpp"
 #include "server/sim/iteration_metrics.hpp"
+#include "server/sim/spatial_job_runner.hpp"
 
 namespace netmc::job {
 
@@ -14,6 +15,10 @@ namespace netmc::job {
 void apply_defaults(netmc::v1::JobSpec& spec);
 // Builds the runnable job (loads delay trace files, validates every field).
 sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec);
+// Three-axis jobs (trajectory.spatial_circle): GTCF-SARC in-process, see SpatialJobRunner.
+bool is_spatial_job(const netmc::v1::JobSpec& spec);
+sim::SpatialJob build_spatial_job(const netmc::v1::JobSpec& spec);
+netmc::v1::IterationMetrics to_proto(const sim::SpatialIterationMetrics& metrics);
 
 std::string describe_trajectory(const netmc::v1::Trajectory& trajectory);
 std::string describe_link(const netmc::v1::LinkProfile& link);
