@@ -38,14 +38,12 @@ std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_
         if (spatial_jobs[i]) {
           sim::SpatialJobRunner runner(std::move(*spatial_jobs[i]));
           out.result = job::describe_run(spec, runner.controller_description());
-          out.result.set_evaluation_start_s(runner.job().evaluation_start());
           *out.result.add_iterations() = job::to_proto(runner.run());
           if (on_iteration) on_iteration();
           continue;
         }
         sim::ContourJobRunner runner(std::move(*jobs[i]));
         out.result = job::describe_run(spec, runner.controller_description());
-        out.result.set_evaluation_start_s(runner.job().evaluation_start());
         runner.run_all([&](const sim::IterationRecord& record) {
           *out.result.add_iterations() = job::to_proto(record.metrics);
           if (record_traces) out.last_trace = record.trace;

@@ -510,6 +510,14 @@ netmc::v1::RunResult describe_run(const netmc::v1::JobSpec& spec,
   result.set_controller_detail(controller_detail);
   result.set_sample_period_s(spec.sample_period_s());
   result.set_seed(spec.seed());
+  // The window as the runners resolve it (ContourJob / SpatialJob::evaluation_start): the
+  // job's, or two periods of the reference.
+  double evaluation_start_s = spec.evaluation_start_s();
+  if (!(evaluation_start_s > 0.0)) {
+    evaluation_start_s = 2.0 * (is_spatial_job(spec) ? spec.trajectory().spatial_circle().period_s()
+                                                     : build_trajectory(spec.trajectory())->period_s());
+  }
+  result.set_evaluation_start_s(evaluation_start_s);
   return result;
 }
 
