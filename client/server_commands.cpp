@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <stdexcept>
 
 #include "client/study_flags.hpp"
 #include "client/study_report.hpp"
 #include "client/verbosity.hpp"
 #include "idl/management.pb.h"
+#include "server/job/job_builder.hpp"
 #include "server/management/management_client.hpp"
 
 namespace netmc::cli {
@@ -81,6 +83,12 @@ std::function<int()> add_run_command(CLI::App& app) {
   add_study_flags(run, flags->study);
   return [flags]() -> int {
     const StudyPlan plan = plan_from_flags(flags->study);
+    for (const auto& spec : plan.jobs) {
+      if (job::is_spatial_job(spec)) {
+        throw std::invalid_argument("a three-axis contour (spatial_circle) runs in-process only: use netmc sim; "
+                                    "netmc-server runs two-axis contour groups");
+      }
+    }
     management::ManagementClient client(flags->server, kServerConnectTimeout);
     std::vector<RunOutcome> outcomes;
     std::uint64_t request_id = 1;

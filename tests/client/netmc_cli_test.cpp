@@ -56,6 +56,12 @@ TEST(NetmcCli, BadInputFailsWithOneMessageNamingTheFieldAndWritesNothing) {
 TEST(NetmcCli, UsageErrorsExitWithCode2) {
   EXPECT_EQ(run("sim --no-such-flag").exit_code, 2);
   EXPECT_EQ(run("sim --preset seed999").exit_code, 2);
+  // Three-axis jobs: in-process only, and without per-cycle traces; refused before anything runs.
+  EXPECT_EQ(run("run --server 127.0.0.1:9 --preset thesis-spatial").exit_code, 2);
+  const Result plot = run("sim --preset thesis-spatial --csv " + scratch("spatial").string());
+  EXPECT_EQ(plot.exit_code, 2);
+  EXPECT_NE(plot.output.find("--csv: three-axis"), std::string::npos) << plot.output;
+  EXPECT_FALSE(std::filesystem::exists(scratch("spatial")));
 }
 
 TEST(NetmcCli, JsonHoldsEveryIterationOfEveryRun) {
