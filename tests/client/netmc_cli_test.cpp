@@ -58,10 +58,11 @@ TEST(NetmcCli, UsageErrorsExitWithCode2) {
   EXPECT_EQ(run("sim --preset seed999").exit_code, 2);
   // Three-axis jobs: in-process only, and without per-cycle traces; refused before anything runs.
   EXPECT_EQ(run("run --server 127.0.0.1:9 --preset thesis-spatial").exit_code, 2);
-  const Result plot = run("sim --preset thesis-spatial --csv " + scratch("spatial").string());
+  const auto traces = scratch("spatial");
+  const Result plot = run("sim --preset thesis-spatial --csv " + traces.string());
   EXPECT_EQ(plot.exit_code, 2);
   EXPECT_NE(plot.output.find("--csv: three-axis"), std::string::npos) << plot.output;
-  EXPECT_FALSE(std::filesystem::exists(scratch("spatial")));
+  EXPECT_FALSE(std::filesystem::exists(traces));
 }
 
 TEST(NetmcCli, JsonHoldsEveryIterationOfEveryRun) {
