@@ -1,4 +1,5 @@
-// Measures one ContouringController::step, one simulated ILC iteration (1601 cycles), and the seed001 study.
+// Measures one controller step (ADRC family, task-space, three-axis), the numerical task frame,
+// one simulated ILC iteration (1601 cycles), and the seed001 study.
 // Run: build/bench/netmc_bench  (e.g. --benchmark_repetitions=5 --benchmark_report_aggregates_only=true)
 
 #include <benchmark/benchmark.h>
@@ -6,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <thread>
 #include <vector>
@@ -15,8 +17,10 @@
 #include "control/circle_trajectory.hpp"
 #include "control/controller_catalog.hpp"
 #include "control/cubic_spline_curve.hpp"
+#include "control/ellipse_trajectory.hpp"
 #include "control/feed_rate_trajectory.hpp"
 #include "control/lissajous_trajectory.hpp"
+#include "control/spatial_sarc.hpp"
 #include "control/task_frame.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/sim/contour_job_runner.hpp"
@@ -133,7 +137,77 @@ void BM_NumericalTaskFrame_Lissajous(benchmark::State& state) {
   numerical_frame(state, figure);
 }
 
+// One cycle of a task-space controller at the thesis's h = 0.2 ms (a 200 us budget) on the
+// thesis ellipse (x = 0.2 sin 7t, y = 0.02 - 0.02 cos 7t), the measured position 3 um off the
+// reference along the normal; closed-form frame for gtcf-*, the desired point's tangent for ltcf-*.
+void task_space_step(benchmark::State& state, const std::string& controller_name) {
+  constexpr double h = 2e-4;
+  netmc::control::EllipseParameters parameters;
+  parameters.center = {0.0, 0.02};
+  parameters.semi_axis_x_m = 0.2;
+  parameters.semi_axis_y_m = 0.02;
+  parameters.period_s = 2.0 * std::numbers::pi / 7.0;
+  parameters.start_angle_rad = -std::numbers::pi / 2.0;
+  const netmc::control::EllipseTrajectory ellipse(parameters);
+  const std::size_t cycles = static_cast<std::size_t>(ellipse.duration_s() / h);
+  std::vector<netmc::control::ReferencePoint> references(cycles);
+  std::vector<Eigen::Vector2d> measured(cycles);
+  for (std::size_t k = 0; k < cycles; ++k) {
+    references[k] = ellipse.sample(static_cast<double>(k) * h);
+    const Eigen::Vector2d v = references[k].velocity;
+    measured[k] = references[k].position + 3e-6 * Eigen::Vector2d(-v.y(), v.x()).normalized();
+  }
+  auto controller = netmc::control::make_contour_controller(controller_name, {}, h, ellipse);
+  controller->begin_iteration(references[0].position, cycles);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    auto cycle = controller->step(k, references[k], measured[k]);
+    benchmark::DoNotOptimize(cycle);
+    if (++k == cycles) {
+      k = 0;
+      controller->begin_iteration(references[0].position, cycles);
+    }
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+
+void BM_ControlStep_GtcfSarc(benchmark::State& state) { task_space_step(state, "gtcf-sarc"); }
+void BM_ControlStep_LtcfSarc(benchmark::State& state) { task_space_step(state, "ltcf-sarc"); }
+void BM_ControlStep_GtcfDiarc(benchmark::State& state) { task_space_step(state, "gtcf-diarc"); }
+void BM_ControlStep_GtcfAdrc(benchmark::State& state) { task_space_step(state, "gtcf-adrc"); }
+
+// One cycle of three-axis GTCF-SARC (thesis ch. 6) on a tilted 50 mm circle, 3 um off it.
+void BM_ControlStep_SpatialSarc_ThreeAxes(benchmark::State& state) {
+  constexpr double h = 2e-4;
+  netmc::control::SpatialCircleParameters parameters;
+  parameters.center = {0.10, 0.10, 0.05};
+  parameters.normal = {-1.0, 1.0, 0.5};
+  parameters.period_s = 2.0 * std::numbers::pi / 4.0;
+  auto circle = std::make_shared<netmc::control::SpatialCircle>(parameters);
+  netmc::control::SpatialSarc controller({}, h, circle);
+  const auto cycles = static_cast<std::size_t>(parameters.period_s / h);
+  std::vector<netmc::control::SpatialReferencePoint> references(cycles);
+  std::vector<Eigen::Vector3d> measured(cycles);
+  for (std::size_t k = 0; k < cycles; ++k) {
+    references[k] = circle->sample(static_cast<double>(k) * h);
+    measured[k] = references[k].position + 3e-6 * (references[k].position - parameters.center).normalized();
+  }
+  controller.begin(references[0].position);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    auto u = controller.step(references[k], measured[k]);
+    benchmark::DoNotOptimize(u);
+    if (++k == cycles) k = 0;
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+
 BENCHMARK(BM_ControlStep_AdrcIlccc_TwoAxes);
+BENCHMARK(BM_ControlStep_GtcfSarc);
+BENCHMARK(BM_ControlStep_LtcfSarc);
+BENCHMARK(BM_ControlStep_GtcfDiarc);
+BENCHMARK(BM_ControlStep_GtcfAdrc);
+BENCHMARK(BM_ControlStep_SpatialSarc_ThreeAxes);
 BENCHMARK(BM_ControlStep_Adrc_TwoAxes);
 BENCHMARK(BM_NumericalTaskFrame_Spline);
 BENCHMARK(BM_NumericalTaskFrame_Lissajous);
