@@ -66,7 +66,7 @@ class TaskSpaceDiarc final : public ContourController {
  public:
   TaskSpaceDiarc(const DiarcGains& gains, double sample_period_s, std::shared_ptr<const TaskFrame> frame,
                  const InitializationFilterSettings& filter = {},
-                LocalFrameRate local_rate = LocalFrameRate::frozen);
+                 LocalFrameRate local_rate = LocalFrameRate::frozen);
 
   void begin_iteration(const Eigen::Vector2d& initial_position, std::size_t samples) override;
   ContouringCycle step(std::size_t cycle, const ReferencePoint& reference,

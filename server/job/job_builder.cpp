@@ -501,7 +501,16 @@ netmc::v1::RunResult describe_run(const netmc::v1::JobSpec& spec,
   result.set_controller(spec.controller().name());
   result.set_label(spec.name().empty() ? spec.controller().name() : spec.name());
   result.set_plant(spec.plant());
-  result.set_trajectory(describe_trajectory(spec.trajectory()));
+  // The reference is built once: for its description and the period the window is counted in.
+  double reference_period_s = 0.0;
+  if (is_spatial_job(spec)) {
+    result.set_trajectory(describe_trajectory(spec.trajectory()));
+    reference_period_s = spec.trajectory().spatial_circle().period_s();
+  } else {
+    const auto trajectory = build_trajectory(spec.trajectory());
+    result.set_trajectory(trajectory->describe());
+    reference_period_s = trajectory->period_s();
+  }
   std::string delay = describe_link(spec.downlink());
   if (spec.uplink().has_delay() || spec.uplink().has_loss()) {
     delay = "up: " + describe_link(spec.uplink()) + "; down: " + delay;
@@ -510,14 +519,7 @@ netmc::v1::RunResult describe_run(const netmc::v1::JobSpec& spec,
   result.set_controller_detail(controller_detail);
   result.set_sample_period_s(spec.sample_period_s());
   result.set_seed(spec.seed());
-  // The window as the runners resolve it (ContourJob / SpatialJob::evaluation_start): the
-  // job's, or two periods of the reference.
-  double evaluation_start_s = spec.evaluation_start_s();
-  if (!(evaluation_start_s > 0.0)) {
-    evaluation_start_s = 2.0 * (is_spatial_job(spec) ? spec.trajectory().spatial_circle().period_s()
-                                                     : build_trajectory(spec.trajectory())->period_s());
-  }
-  result.set_evaluation_start_s(evaluation_start_s);
+  result.set_evaluation_start_s(sim::resolve_evaluation_start(spec.evaluation_start_s(), reference_period_s));
   return result;
 }
 

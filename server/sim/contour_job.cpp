@@ -48,7 +48,7 @@ Eigen::Vector2d ContourJob::start_position() const {
 }
 
 double ContourJob::evaluation_start() const {
-  return evaluation_start_s > 0.0 ? evaluation_start_s : 2.0 * trajectory->period_s();
+  return resolve_evaluation_start(evaluation_start_s, trajectory->period_s());
 }
 
 std::size_t ContourJob::cycles() const {

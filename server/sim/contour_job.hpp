@@ -29,6 +29,12 @@ struct LinkProfile {
   std::string describe() const;
 };
 
+// Start of the steady metrics' window: the requested start, or (0) after two periods of the
+// reference, where the thesis judges its runs. Every job kind and the result description use it.
+inline double resolve_evaluation_start(double requested_s, double reference_period_s) {
+  return requested_s > 0.0 ? requested_s : 2.0 * reference_period_s;
+}
+
 struct ContourJob {
   std::shared_ptr<const control::ReferenceTrajectory> trajectory;
   std::string plant_name;

@@ -24,8 +24,8 @@ void SpatialJob::validate() const {
   if (duration_s() / sample_period_s > 1e8) {
     throw std::invalid_argument("revolutions: more than 1e8 samples at this sample period");
   }
-  control::SpatialCircle check(circle);  // throws for a degenerate circle
-  control::SpatialSarc sarc(gains, sample_period_s, std::make_shared<control::SpatialCircle>(circle));
+  // Throws for a degenerate circle or an invalid gain.
+  control::SpatialSarc sarc(gains, sample_period_s, std::make_shared<const control::SpatialCircle>(circle));
 }
 
 SpatialJobRunner::SpatialJobRunner(SpatialJob job) : job_(std::move(job)) {

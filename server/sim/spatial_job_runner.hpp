@@ -33,7 +33,7 @@ struct SpatialJob {
   std::uint64_t seed = 1;
 
   double duration_s() const { return revolutions * circle.period_s; }
-  double evaluation_start() const { return evaluation_start_s > 0.0 ? evaluation_start_s : 2.0 * circle.period_s; }
+  double evaluation_start() const { return resolve_evaluation_start(evaluation_start_s, circle.period_s); }
   // Throws std::invalid_argument naming the field when the job cannot run.
   void validate() const;
 };
