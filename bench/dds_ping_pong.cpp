@@ -1,5 +1,5 @@
-// Bare Fast DDS ping-pong with netmc's own sample types and QoS: the reference for the closed
-// loop's feedback-to-setpoint round trip. One process pongs, one pings at a fixed rate.
+// Bare Fast DDS ping-pong with netmc's own sample types and realtime QoS (best-effort): the
+// reference for the closed loop's feedback-to-setpoint round trip. One process pongs, one pings.
 // Run: bench/dds_round_trip.sh BUILD_DIR (starts both and the closed loop).
 
 #include <CLI/CLI.hpp>
@@ -18,14 +18,14 @@ using Clock = std::chrono::steady_clock;
 
 int pong(netmc::dds::DdsContext& context, double seconds) {
   auto* writer = context.writer(context.topic<netmc::dds::SetpointPubSubType>("bench/pong"),
-                                netmc::dds::Delivery::control);
+                                netmc::dds::Delivery::stream);
   netmc::dds::SampleReader<netmc::dds::Feedback> reader(context.reader(
-      context.topic<netmc::dds::FeedbackPubSubType>("bench/ping"), netmc::dds::Delivery::control));
+      context.topic<netmc::dds::FeedbackPubSubType>("bench/ping"), netmc::dds::Delivery::stream));
   const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
   netmc::dds::Setpoint reply;
   while (Clock::now() < end) {
     if (auto ping = reader.take(std::chrono::milliseconds(100))) {
-      reply.axis_id(ping->axis_id());
+      reply.axis(ping->axis());
       reply.cycle(ping->cycle());
       reply.command(ping->position_m());
       writer->write(&reply);
@@ -36,9 +36,9 @@ int pong(netmc::dds::DdsContext& context, double seconds) {
 
 int ping(netmc::dds::DdsContext& context, int rate_hz, int count) {
   auto* writer = context.writer(context.topic<netmc::dds::FeedbackPubSubType>("bench/ping"),
-                                netmc::dds::Delivery::control);
+                                netmc::dds::Delivery::stream);
   netmc::dds::SampleReader<netmc::dds::Setpoint> reader(context.reader(
-      context.topic<netmc::dds::SetpointPubSubType>("bench/pong"), netmc::dds::Delivery::control));
+      context.topic<netmc::dds::SetpointPubSubType>("bench/pong"), netmc::dds::Delivery::stream));
   if (!netmc::dds::wait_for_readers(writer, 1, std::chrono::seconds(10))) {
     fmt::print(stderr, "ping: no pong matched within 10 s\n");
     return 1;

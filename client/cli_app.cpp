@@ -25,7 +25,7 @@ int run_netmc(int argc, const char* const* argv) {
   netmc sim --delay constant:4ms --controller adrc,adrc+pidccc
   netmc sweep --delay-max 0.5ms:10ms:20 --seeds 1..5 --iterations 10 --csv sweep.csv
   netmc plot --sweep sweep.csv --out figures
-  netmc run --server 127.0.0.1:7400            # the same study on netmc-server + axis nodes
+  netmc run --server 127.0.0.1:7300            # the same study on netmc-server + axis nodes
   netmc SUBCOMMAND --help                      # flags and examples of each subcommand
 
 Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
@@ -37,13 +37,13 @@ Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
   const auto run_cee = add_cee_command(app);
   app.get_subcommand("run")->footer(R"(Examples:
   # with netmc-server and two netmc-axis nodes running (README "Distributed runs")
-  netmc run --server 127.0.0.1:7400                          # paper 001's study in lockstep
-  netmc run --server 127.0.0.1:7400 --controller adrc+ilccc --iterations 5 --json run.json
-  netmc run --server 127.0.0.1:7400 --clock realtime         # nodes started with --clock realtime
+  netmc run --server 127.0.0.1:7300                          # paper 001's study in lockstep
+  netmc run --server 127.0.0.1:7300 --controller adrc+ilccc --iterations 5 --json run.json
+  netmc run --server 127.0.0.1:7300 --clock realtime         # nodes started with --clock realtime
 
 Takes every flag and preset of netmc sim; --quiet prints only the final table.)");
   app.get_subcommand("nodes")->footer(R"(Examples:
-  netmc nodes --server 127.0.0.1:7400     # node, axes, plant, clock, last seen, health)");
+  netmc nodes --server 127.0.0.1:7300     # node, axes, plant, clock, last seen, health)");
   app.get_subcommand("cee")->footer(R"(Examples:
   netmc cee                                # 2000 samples per contour, seed 1
   netmc cee --points 20000 --max-lag-ms 5 --normal-sd-um 10)");

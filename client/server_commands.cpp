@@ -74,7 +74,7 @@ RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::
 std::function<int()> add_run_command(CLI::App& app) {
   struct Flags {
     StudyFlags study;
-    std::string server = "127.0.0.1:7400";
+    std::string server = "127.0.0.1:7300";
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* run = app.add_subcommand(
@@ -104,22 +104,36 @@ std::function<int()> add_run_command(CLI::App& app) {
 }
 
 std::function<int()> add_nodes_command(CLI::App& app) {
-  auto server = std::make_shared<std::string>("127.0.0.1:7400");
+  struct Flags {
+    std::string server = "127.0.0.1:7300";
+    bool json = false;
+  };
+  auto flags = std::make_shared<Flags>();
   CLI::App* nodes = app.add_subcommand("nodes", "List the axis nodes a netmc-server has discovered");
-  nodes->add_option("--server", *server, "netmc-server management endpoint HOST:PORT");
-  return [server]() -> int {
-    management::ManagementClient client(*server, kServerConnectTimeout);
+  nodes->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT");
+  nodes->add_flag("--json", flags->json,
+                  "Print the reply as JSON (protobuf JSON mapping of netmc.v1.NodesReply), for scripts");
+  return [flags]() -> int {
+    management::ManagementClient client(flags->server, kServerConnectTimeout);
     netmc::v1::Request request;
     request.set_request_id(1);
     request.mutable_nodes();
     client.send(request);
-    const auto response = expect_response(client, std::chrono::seconds(10), *server);
-    fmt::print("{:<20} {:<6} {:<10} {:<9} {:>10}  {}\n", "node", "axes", "plant", "clock", "seen [s]", "health");
+    const auto response = expect_response(client, std::chrono::seconds(10), flags->server);
+    if (flags->json) {
+      fmt::print("{}\n", job::to_json(response.nodes()));
+      return 0;
+    }
+    fmt::print("{:<20} {:<10} {:<10} {:<9} {:>8} {:>18} {:>9}  {}\n", "node", "axes", "plant", "clock",
+               "seen [s]", "offset [s]", "rtt [ms]", "health");
     for (const auto& node : response.nodes().nodes()) {
       std::string axes;
       for (const auto& axis : node.axes()) axes += (axes.empty() ? "" : ",") + axis;
-      fmt::print("{:<20} {:<6} {:<10} {:<9} {:>10.1f}  {}\n", node.node(), axes, node.plant(),
-                 node.clock(), node.last_seen_s(), node.health());
+      const std::string offset = node.clock_measured() ? fmt::format("{:+.6f}", node.clock_offset_s()) : "-";
+      const std::string rtt = node.clock_measured() ? fmt::format("{:.3f}", node.round_trip_s() * 1e3) : "-";
+      fmt::print("{:<20} {:<10} {:<10} {:<9} {:>8.1f} {:>18} {:>9}  {}{}\n", node.node(), axes, node.plant(),
+                 node.clock(), node.last_seen_s(), offset, rtt, node.health(),
+                 node.held_by().empty() ? "" : " (held by " + node.held_by() + ")");
     }
     if (response.nodes().nodes_size() == 0) fmt::print("(no axis node discovered)\n");
     return 0;

@@ -89,6 +89,15 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
       }
     }
     if (!f.clock.empty()) job.set_clock(f.clock);
+    if (!f.axes.empty()) {
+      job.clear_axes();
+      for (const auto& name : split_list(f.axes)) job.add_axes(name);
+      try {
+        job::axis_names(job);
+      } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument(std::string("--") + error.what());
+      }
+    }
     if (f.iterations != 0) job.set_iterations(static_cast<std::uint32_t>(f.iterations));
     if (f.seed >= 0) job.set_seed(static_cast<std::uint64_t>(f.seed));
     if (!f.adrc.empty()) parse_adrc_gains(f.adrc, *job.mutable_controller()->mutable_adrc());
@@ -127,7 +136,8 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     const bool overridden = changes_setup || !f.controllers.empty() || !f.adrc.empty() ||
                             !f.ilc.empty() || !f.pidccc.empty() || !f.pid.empty() ||
                             !f.estimator.empty() || !f.deadline.empty() || !f.compute_delay.empty() ||
-                            !f.command_limit.empty() || !f.divergence_limit.empty() || !f.clock.empty();
+                            !f.command_limit.empty() || !f.divergence_limit.empty() || !f.clock.empty() ||
+                            !f.axes.empty();
     for (const auto& job : plan.jobs) {
       try {
         if (job::is_spatial_job(job)) {
@@ -148,6 +158,10 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--clock", flags.clock,
                   "Distributed runs: lockstep (virtual time, equals sim) or realtime (wall clock)")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
+  app->add_option("--axes", flags.axes,
+                  "Distributed runs: the axis names (netmc-axis --axes) that the contour's x and y "
+                  "drive, e.g. stage1.x,stage1.y (default x,y)")
+      ->type_name("X,Y");
   app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty, thesis-ellipse, thesis-circle, thesis-darc, thesis-ellipse-delay, thesis-spatial");
   app->add_option("--spec", flags.spec_file, "Job spec as JSON (protobuf JSON mapping of netmc.v1.JobSpec)");
   app->add_option("--trajectory", flags.trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. (or feed=..,amax=.. instead of period) | line:x0=..,y0=..,x1=..,y1=..,duration=.. | "

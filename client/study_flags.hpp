@@ -20,6 +20,7 @@ struct StudyFlags {
   int iterations = 0;
   long long seed = -1;
   std::string clock;
+  std::string axes;
   std::string json_path;
   bool curve = false;
 };

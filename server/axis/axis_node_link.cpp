@@ -1,54 +1,200 @@
 #include "server/axis/axis_node_link.hpp"
 
+#include <algorithm>
+#include <iostream>
+#include <set>
+
 #include "dds_typesPubSubTypes.h"
 #include "idl/job.pb.h"
 #include "server/dds/topics.hpp"
 #include "server/job/job_builder.hpp"
 
 namespace netmc::axis {
+namespace {
+
+bool realtime(const AxisNodeConfig& config) { return config.clock == "realtime"; }
+
+}  // namespace
 
 AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
-    : config_(std::move(config)),
+    : context_(context),
+      config_(std::move(config)),
       feedback_writer_(context.writer(
-          context.topic<netmc::dds::FeedbackPubSubType>(dds::kFeedbackTopic), dds::Delivery::control)),
+          context.topic<netmc::dds::FeedbackPubSubType>(realtime(config_) ? dds::kRealtimeFeedbackTopic
+                                                                          : dds::kLockstepFeedbackTopic),
+          realtime(config_) ? dds::Delivery::stream : dds::Delivery::exchange)),
+      event_writer_(context.writer(context.topic<netmc::dds::AxisEventPubSubType>(dds::kAxisEventTopic),
+                                   dds::Delivery::control)),
       status_writer_(context.writer(
-          context.topic<netmc::dds::NodeStatusPubSubType>(dds::kNodeStatusTopic),
-          dds::Delivery::status)),
-      setpoints_(context.reader(context.topic<netmc::dds::SetpointPubSubType>(dds::kSetpointTopic),
-                                dds::Delivery::control)) {}
+          context.topic<netmc::dds::NodeStatusPubSubType>(dds::kNodeStatusTopic), dds::Delivery::status)),
+      reply_writer_(context.writer(context.topic<netmc::dds::ClockReplyPubSubType>(dds::kClockReplyTopic),
+                                   dds::Delivery::stream)),
+      // Each node reads only its own axes' control and setpoints and its own clock probes.
+      control_(context.reader_where(context.topic<netmc::dds::JobControlPubSubType>(dds::kJobControlTopic),
+                                    dds::Delivery::control, "axis", config_.axes)),
+      setpoints_(context.reader_where(
+          context.topic<netmc::dds::SetpointPubSubType>(realtime(config_) ? dds::kRealtimeSetpointTopic
+                                                                          : dds::kLockstepSetpointTopic),
+          realtime(config_) ? dds::Delivery::stream : dds::Delivery::exchange, "axis", config_.axes)),
+      probes_(context.reader_where(context.topic<netmc::dds::ClockProbePubSubType>(dds::kClockProbeTopic),
+                                   dds::Delivery::stream, "node", {config_.node})),
+      probe_thread_([this] { answer_probes(); }) {}
+
+AxisNodeLink::~AxisNodeLink() {
+  stop_.store(true);
+  probe_thread_.join();
+  try {
+    publish_status(netmc::dds::NODE_LEAVING, "shut down");
+  } catch (const std::exception&) {
+  }
+}
+
+void AxisNodeLink::claim(std::chrono::milliseconds listen) {
+  // Only for the claim: a node that kept reading every other node's status would cost every
+  // status writer one more reader to serve.
+  auto* reader = context_.reader(context_.topic<netmc::dds::NodeStatusPubSubType>(dds::kNodeStatusTopic),
+                                 dds::Delivery::status);
+  struct Remove {
+    dds::DdsContext& context;
+    eprosima::fastdds::dds::DataReader* reader;
+    ~Remove() { context.remove_reader(reader); }
+  } remove{context_, reader};
+  dds::SampleReader<netmc::dds::NodeStatus> others(reader);
+  const std::set<std::string> mine(config_.axes.begin(), config_.axes.end());
+  const auto deadline = std::chrono::steady_clock::now() + listen;
+  while (auto status = others.take_until(deadline)) {
+    if (status->participant() == context_.identity() || status->health() == netmc::dds::NODE_REFUSED ||
+        status->health() == netmc::dds::NODE_LEAVING) {
+      continue;
+    }
+    std::string conflict;
+    if (status->node() == config_.node) conflict = "the name " + config_.node + " is taken by a live node";
+    for (const auto& axis : status->axes()) {
+      if (conflict.empty() && mine.count(axis)) {
+        conflict = "axis " + axis + " is held by node " + status->node();
+      }
+    }
+    if (!conflict.empty()) {
+      publish_status(netmc::dds::NODE_REFUSED, "refused: " + conflict);
+      throw NodeRefused(conflict);
+    }
+  }
+}
+
+bool AxisNodeLink::hosts(const std::string& axis) const {
+  return std::find(config_.axes.begin(), config_.axes.end(), axis) != config_.axes.end();
+}
+
+void AxisNodeLink::publish(netmc::dds::Feedback& feedback) { dds::write_checked(feedback_writer_, &feedback); }
+
+void AxisNodeLink::publish_event(netmc::dds::AxisEvent& event) { dds::write_checked(event_writer_, &event); }
 
 void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::string& detail) {
   netmc::dds::NodeStatus status;
   status.node(config_.node);
-  status.axis_ids(config_.axis_ids);
+  status.axes(config_.axes);
   status.plant(config_.plant);
   status.clock(config_.clock);
+  status.time_base(dds::time_base_name(config_.time_base));
   status.health(health);
-  status.detail(detail);
-  status_writer_->write(&status);
+  status.detail(detail.substr(0, 255));
+  status.participant(context_.identity());
+  {
+    std::lock_guard lock(mutex_);
+    const bool held = !held_by_.empty() &&
+                      std::chrono::steady_clock::now() - last_contact_ < config_.hold_lease;
+    status.held_by(held ? held_by_ : "");
+    status.job_id(held ? held_job_ : 0);
+  }
+  status.status_period_s(std::chrono::duration<double>(kStatusPeriod).count());
+  dds::write_checked(status_writer_, &status);
 }
 
-JobAxis AxisNodeLink::start_job(const netmc::dds::Setpoint& begin) {
-  // A new server may not have matched our feedback yet; samples sent before that are lost.
-  if (!dds::wait_for_readers(feedback_writer_, 1, std::chrono::seconds(5))) {
-    throw std::runtime_error("no server reads this node's feedback");
+std::string AxisNodeLink::admit(const netmc::dds::JobControl& control) {
+  std::lock_guard lock(mutex_);
+  const auto now = std::chrono::steady_clock::now();
+  const bool held = !held_by_.empty() && now - last_contact_ < config_.hold_lease;
+  const bool new_job = control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty();
+  if (held && held_by_ == control.server() && held_job_ == control.job_id()) {
+    last_contact_ = now;
+    return "";
+  }
+  if (!new_job) return "not the job of the server that holds this node";
+  if (held && held_by_ != control.server()) {
+    return "axis " + control.axis() + " is held by server " + held_by_ + " (job " + std::to_string(held_job_) + ")";
+  }
+  held_by_ = control.server();
+  held_job_ = control.job_id();
+  last_contact_ = now;
+  return "";
+}
+
+bool AxisNodeLink::from_holder(const std::string& server, std::uint64_t job_id) {
+  std::lock_guard lock(mutex_);
+  if (held_by_ != server || held_job_ != job_id) return false;
+  last_contact_ = std::chrono::steady_clock::now();
+  return true;
+}
+
+void AxisNodeLink::release(const std::string& server, std::uint64_t job_id) {
+  std::lock_guard lock(mutex_);
+  if (held_by_ == server && held_job_ == job_id) held_by_.clear();
+}
+
+JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
+  // The server must read this node's feedback before the first sample leaves: wait for its
+  // reader by identity (a dead server's reader, still counted by DDS, does not do).
+  if (!context_.wait_for_participants(feedback_writer_, {begin.server()}, std::chrono::seconds(5)) ||
+      !context_.wait_for_participants(event_writer_, {begin.server()}, std::chrono::seconds(5))) {
+    throw std::runtime_error("server " + begin.server() + " does not read this node's feedback");
   }
   netmc::v1::JobSpec spec;
   if (!spec.ParseFromArray(begin.job_spec().data(), static_cast<int>(begin.job_spec().size()))) {
     throw std::invalid_argument("malformed job spec");
   }
+  if (spec.plant() != config_.plant) {
+    throw std::invalid_argument("the job needs plant '" + spec.plant().substr(0, 64) + "', this node hosts '" +
+                                config_.plant + "'");
+  }
   const sim::ContourJob job = job::build_contour_job(spec);
+  job_axes_ = job::axis_names(spec);
+  const std::size_t index = job_axis_index(begin.axis());
   JobAxis axis;
-  axis.endpoint = std::make_unique<sim::AxisEndpoint>(job.axes.at(begin.axis_id())->clone(), job,
-                                                      begin.axis_id());
+  axis.endpoint = std::make_unique<sim::AxisEndpoint>(job.axes.at(index)->clone(), job, index);
   axis.job_id = begin.job_id();
   axis.cycles = job.cycles();
   axis.sample_period_s = job.sample_period_s;
   return axis;
 }
 
+std::size_t AxisNodeLink::job_axis_index(const std::string& axis) const {
+  const auto it = std::find(job_axes_.begin(), job_axes_.end(), axis);
+  if (it == job_axes_.end()) throw std::invalid_argument("axis " + axis + " is not an axis of the job");
+  return static_cast<std::size_t>(it - job_axes_.begin());
+}
+
+void AxisNodeLink::answer_probes() {
+  while (!stop_.load()) {
+    auto probe = probes_.take(std::chrono::milliseconds(100));
+    if (!probe || probe->node() != config_.node) continue;
+    netmc::dds::ClockReply reply;
+    reply.t2_s(now_s());
+    reply.server(probe->server());
+    reply.node(config_.node);
+    reply.number(probe->number());
+    reply.t1_s(probe->t1_s());
+    reply.t3_s(now_s());
+    try {
+      dds::write_checked(reply_writer_, &reply);
+    } catch (const std::exception&) {
+      // A reply that cannot leave is a lost probe: the server's estimate uses the others.
+    }
+  }
+}
+
 void append_applied(netmc::dds::Feedback& feedback, const std::vector<sim::AppliedSetpoint>& applied) {
   for (const auto& a : applied) {
+    if (feedback.applied().size() >= netmc::dds::kMaxApplied) break;
     netmc::dds::AppliedSetpoint entry;
     entry.cycle(a.sequence);
     entry.send_time_s(a.send_time_s);
@@ -64,6 +210,25 @@ void set_sample(netmc::dds::Feedback& feedback, std::uint64_t cycle, double time
   feedback.position_m(sample.measured_m);
   feedback.true_position_m(sample.true_position_m);
   feedback.sample_time_s(time_s);
+}
+
+std::vector<std::string> parse_axis_list(const std::string& text) {
+  std::vector<std::string> names;
+  std::string name;
+  for (char c : text + ",") {
+    if (c != ',') {
+      name += c;
+      continue;
+    }
+    job::check_name(name, "--axes");
+    if (std::find(names.begin(), names.end(), name) != names.end()) {
+      throw std::invalid_argument("--axes: axis '" + name + "' named twice");
+    }
+    names.push_back(name);
+    name.clear();
+  }
+  if (names.size() > netmc::dds::kMaxAxesPerNode) throw std::invalid_argument("--axes: at most 64 axes per node");
+  return names;
 }
 
 }  // namespace netmc::axis

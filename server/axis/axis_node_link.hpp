@@ -1,23 +1,45 @@
 #pragma once
-// What both kinds of axis node (lockstep, realtime) share: the node's identity, its DDS
-// endpoints (setpoints in; feedback and status out) and the start of a job from its spec.
+// What both kinds of axis node (lockstep, realtime) share: the node's identity and its claim on
+// its axes, its DDS endpoints, the server that holds it, the clock probes it answers, and the
+// start of a job from its spec.
 
+#include <atomic>
+#include <chrono>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "dds_types.h"
 #include "server/dds/dds_context.hpp"
+#include "server/dds/time_base.hpp"
 #include "server/sim/axis_endpoint.hpp"
 
 namespace netmc::axis {
 
 struct AxisNodeConfig {
   std::string node;                    // unique node name
-  std::vector<std::uint32_t> axis_ids; // 0 = x, 1 = y
+  std::vector<std::string> axes;       // axis names this node hosts (unique on the domain)
   std::string plant = "seed001";       // the plant model this node hosts
   std::string clock = "lockstep";
+  dds::TimeBase time_base = dds::TimeBase::monotonic;
+  // How long a holding server may stay silent before another may take the axes.
+  std::chrono::milliseconds hold_lease{10000};
 };
+
+// The node's name or one of its axes belongs to a live node already.
+class NodeRefused : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// How often a node reports its status; the server forgets a node silent for kNodeExpiry.
+inline constexpr std::chrono::milliseconds kStatusPeriod{500};
+inline constexpr std::chrono::milliseconds kNodeExpiry{2500};
 
 // One axis of a job as a node runs it.
 struct JobAxis {
@@ -30,19 +52,58 @@ struct JobAxis {
 class AxisNodeLink {
  public:
   AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config);
+  ~AxisNodeLink();
+  AxisNodeLink(const AxisNodeLink&) = delete;
+  AxisNodeLink& operator=(const AxisNodeLink&) = delete;
+
+  // Listens to the other nodes' status for a while; throws NodeRefused (after saying so on the
+  // status topic) if the name or an axis is taken by a live node.
+  void claim(std::chrono::milliseconds listen);
 
   const AxisNodeConfig& config() const { return config_; }
+  bool hosts(const std::string& axis) const;
+  dds::SampleReader<netmc::dds::JobControl>& control() { return control_; }
   dds::SampleReader<netmc::dds::Setpoint>& setpoints() { return setpoints_; }
-  void publish(netmc::dds::Feedback& feedback) { feedback_writer_->write(&feedback); }
+  void publish(netmc::dds::Feedback& feedback);
+  void publish_event(netmc::dds::AxisEvent& event);
   void publish_status(netmc::dds::NodeHealth health, const std::string& detail);
-  // From the BEGIN_ITERATION setpoint of iteration 1: the job's axis, built from its spec.
-  JobAxis start_job(const netmc::dds::Setpoint& begin);
+
+  // The server that holds this node. A BEGIN of a new job is taken only from the holder or when
+  // no live server holds the node; every other message only from the holder of that job.
+  // Returns an empty string if `control` may proceed, else why not.
+  std::string admit(const netmc::dds::JobControl& control);
+  bool from_holder(const std::string& server, std::uint64_t job_id);
+  void release(const std::string& server, std::uint64_t job_id);
+
+  // From the BEGIN_ITERATION of iteration 1: the job's axis, built from its spec.
+  JobAxis start_job(const netmc::dds::JobControl& begin);
+  // Index of `axis` among the job's axes (x = 0, y = 1).
+  std::size_t job_axis_index(const std::string& axis) const;
+
+  // The node's own clock (its --time-base).
+  double now_s() const { return dds::time_base_now_s(config_.time_base); }
 
  private:
+  void answer_probes();
+
+  dds::DdsContext& context_;
   AxisNodeConfig config_;
   eprosima::fastdds::dds::DataWriter* feedback_writer_;
+  eprosima::fastdds::dds::DataWriter* event_writer_;
   eprosima::fastdds::dds::DataWriter* status_writer_;
+  eprosima::fastdds::dds::DataWriter* reply_writer_;
+  dds::SampleReader<netmc::dds::JobControl> control_;
   dds::SampleReader<netmc::dds::Setpoint> setpoints_;
+  dds::SampleReader<netmc::dds::ClockProbe> probes_;
+
+  std::mutex mutex_;  // status and holder: the probe thread and the node's thread
+  std::string held_by_;
+  std::uint64_t held_job_ = 0;
+  std::chrono::steady_clock::time_point last_contact_{};
+  std::vector<std::string> job_axes_;
+
+  std::atomic<bool> stop_{false};
+  std::thread probe_thread_;
 };
 
 // Copies setpoints applied by the actuator into a feedback sample.
@@ -50,5 +111,7 @@ void append_applied(netmc::dds::Feedback& feedback, const std::vector<sim::Appli
 // Fills the sample fields of a feedback.
 void set_sample(netmc::dds::Feedback& feedback, std::uint64_t cycle, double time_s,
                 const sim::AxisSample& sample);
+// Parses --axes: comma-separated axis names.
+std::vector<std::string> parse_axis_list(const std::string& text);
 
 }  // namespace netmc::axis

@@ -1,77 +1,126 @@
 #include "server/axis/lockstep_axis_node.hpp"
 
+#include <cmath>
+#include <iostream>
+
 namespace netmc::axis {
 
 using netmc::dds::Feedback;
-using netmc::dds::Setpoint;
 
 LockstepAxisNode::LockstepAxisNode(dds::DdsContext& context, AxisNodeConfig config)
     : link_(context, std::move(config)) {
-  for (const auto id : link_.config().axis_ids) axes_[id] = JobAxis{};
+  for (const auto& axis : link_.config().axes) axes_[axis] = JobAxis{};
 }
 
 void LockstepAxisNode::serve(const std::atomic<bool>& stop) {
   link_.publish_status(netmc::dds::NODE_IDLE, "ready");
+  eprosima::fastdds::dds::WaitSet waitset;
+  waitset.attach_condition(link_.control().condition());
+  waitset.attach_condition(link_.setpoints().condition());
   auto last_status = std::chrono::steady_clock::now();
   while (!stop.load()) {
-    if (auto setpoint = link_.setpoints().take(std::chrono::milliseconds(200))) {
-      try {
-        handle(*setpoint);
-      } catch (const std::exception& error) {
-        // A job this node cannot run must not take the node down: report it and stay ready.
-        link_.publish_status(netmc::dds::NODE_FAULT, "job " + std::to_string(setpoint->job_id()) +
-                                                         ": " + error.what());
-        for (auto& [id, axis] : axes_) axis.endpoint.reset();
-      }
-    }
-    if (std::chrono::steady_clock::now() - last_status > std::chrono::seconds(1)) {
+    while (auto control = link_.control().try_take()) handle(*control);
+    while (auto setpoint = link_.setpoints().try_take()) handle(*setpoint);
+    if (std::chrono::steady_clock::now() - last_status >= kStatusPeriod) {
       bool running = false;
-      for (const auto& [id, axis] : axes_) running = running || axis.endpoint != nullptr;
+      for (const auto& [name, axis] : axes_) running = running || axis.endpoint != nullptr;
       link_.publish_status(running ? netmc::dds::NODE_RUNNING : netmc::dds::NODE_IDLE,
                            running ? "running a job" : "ready");
       last_status = std::chrono::steady_clock::now();
     }
+    eprosima::fastdds::dds::ConditionSeq active;
+    waitset.wait(active, eprosima::fastrtps::Duration_t(0, 100'000'000));
   }
 }
 
-void LockstepAxisNode::handle(const Setpoint& setpoint) {
-  const auto owned = axes_.find(setpoint.axis_id());
+void LockstepAxisNode::refuse(const netmc::dds::JobControl& control, netmc::dds::AxisEventKind kind,
+                              const std::string& why) {
+  std::cerr << "netmc-axis " << link_.config().node << ": job " << control.job_id() << " of server "
+            << control.server() << " refused: " << why << std::endl;
+  netmc::dds::AxisEvent event;
+  event.axis(control.axis());
+  event.server(control.server());
+  event.job_id(control.job_id());
+  event.iteration(control.iteration());
+  event.kind(kind);
+  event.detail(why.substr(0, 255));
+  link_.publish_event(event);
+}
+
+void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
+  const auto owned = axes_.find(control.axis());
   if (owned == axes_.end()) return;  // another node's axis
-  JobAxis& axis = owned->second;
-  if (setpoint.kind() == netmc::dds::SETPOINT_BEGIN_ITERATION && !setpoint.job_spec().empty()) {
-    axis = link_.start_job(setpoint);
+  if (const std::string why = link_.admit(control); !why.empty()) {
+    if (control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty()) {
+      refuse(control, netmc::dds::AXIS_REFUSED, why);
+    }
+    return;
   }
-  if (!axis.endpoint || axis.job_id != setpoint.job_id()) return;
+  JobAxis& axis = owned->second;
+  if (control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty()) {
+    try {
+      axis = link_.start_job(control);
+    } catch (const std::exception& error) {
+      // A job this node cannot run must not take the node down: say so and stay ready.
+      axis = JobAxis{};
+      link_.release(control.server(), control.job_id());
+      refuse(control, netmc::dds::AXIS_FAULT, error.what());
+      link_.publish_status(netmc::dds::NODE_FAULT, "job " + std::to_string(control.job_id()) + ": " + error.what());
+      return;
+    }
+  }
+  if (!axis.endpoint || axis.job_id != control.job_id()) return;
 
   Feedback feedback;
-  feedback.axis_id(setpoint.axis_id());
-  feedback.job_id(setpoint.job_id());
-  feedback.iteration(setpoint.iteration());
-  switch (setpoint.kind()) {
-    case netmc::dds::SETPOINT_BEGIN_ITERATION:
-      axis.endpoint->begin_iteration(setpoint.iteration(), setpoint.start_position_m());
+  feedback.axis(control.axis());
+  feedback.server(control.server());
+  feedback.job_id(control.job_id());
+  feedback.iteration(control.iteration());
+  switch (control.kind()) {
+    case netmc::dds::CONTROL_BEGIN_ITERATION:
+      axis.endpoint->begin_iteration(control.iteration(), control.start_position_m());
       set_sample(feedback, 0, 0.0, axis.endpoint->sample());
       break;
-    case netmc::dds::SETPOINT_COMMAND: {
-      axis.endpoint->submit_setpoint(setpoint.send_time_s(), setpoint.cycle(), setpoint.command());
-      const std::uint64_t next = setpoint.cycle() + 1;
-      if (next >= axis.cycles) {
-        feedback.cycle(next);
-        feedback.kind(netmc::dds::FEEDBACK_FINAL);
-        break;
-      }
-      const double next_time = static_cast<double>(next) * axis.sample_period_s;
-      append_applied(feedback, axis.endpoint->advance_to(next_time));
-      set_sample(feedback, next, next_time, axis.endpoint->sample());
-      break;
-    }
-    case netmc::dds::SETPOINT_END_ITERATION:
-      feedback.cycle(setpoint.cycle());
+    case netmc::dds::CONTROL_END_ITERATION:
+      feedback.cycle(control.cycle());
       feedback.kind(netmc::dds::FEEDBACK_FINAL);
       break;
-    case netmc::dds::SETPOINT_END_JOB:
+    case netmc::dds::CONTROL_END_JOB:
       axis.endpoint.reset();
+      link_.release(control.server(), control.job_id());
       return;
+  }
+  feedback.lost_setpoints(axis.endpoint->lost_setpoints());
+  feedback.stale_setpoints(axis.endpoint->stale_setpoints());
+  link_.publish(feedback);
+}
+
+void LockstepAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
+  const auto owned = axes_.find(setpoint.axis());
+  if (owned == axes_.end()) return;
+  JobAxis& axis = owned->second;
+  if (!axis.endpoint || axis.job_id != setpoint.job_id() || !link_.from_holder(setpoint.server(), setpoint.job_id())) {
+    return;
+  }
+  // Nothing but a finite command of this job's cycles reaches the plant.
+  if (!std::isfinite(setpoint.command()) || !std::isfinite(setpoint.send_time_s()) ||
+      setpoint.cycle() >= axis.cycles) {
+    return;
+  }
+  Feedback feedback;
+  feedback.axis(setpoint.axis());
+  feedback.server(setpoint.server());
+  feedback.job_id(setpoint.job_id());
+  feedback.iteration(setpoint.iteration());
+  axis.endpoint->submit_setpoint(setpoint.send_time_s(), setpoint.cycle(), setpoint.command());
+  const std::uint64_t next = setpoint.cycle() + 1;
+  if (next >= axis.cycles) {
+    feedback.cycle(next);
+    feedback.kind(netmc::dds::FEEDBACK_FINAL);
+  } else {
+    const double next_time = static_cast<double>(next) * axis.sample_period_s;
+    append_applied(feedback, axis.endpoint->advance_to(next_time));
+    set_sample(feedback, next, next_time, axis.endpoint->sample());
   }
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
   feedback.stale_setpoints(axis.endpoint->stale_setpoints());

@@ -13,14 +13,18 @@ namespace netmc::axis {
 class LockstepAxisNode {
  public:
   LockstepAxisNode(dds::DdsContext& context, AxisNodeConfig config);
-  // Serves setpoints until `stop` becomes true.
+  AxisNodeLink& link() { return link_; }
+  // Serves job control and setpoints until `stop` becomes true.
   void serve(const std::atomic<bool>& stop);
 
  private:
+  void handle(const netmc::dds::JobControl& control);
   void handle(const netmc::dds::Setpoint& setpoint);
+  void refuse(const netmc::dds::JobControl& control, netmc::dds::AxisEventKind kind,
+              const std::string& why);
 
   AxisNodeLink link_;
-  std::map<std::uint32_t, JobAxis> axes_;
+  std::map<std::string, JobAxis> axes_;
 };
 
 }  // namespace netmc::axis

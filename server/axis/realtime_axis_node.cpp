@@ -1,51 +1,39 @@
 #include "server/axis/realtime_axis_node.hpp"
 
+#include <cmath>
+#include <iostream>
 #include <thread>
 
-
 namespace netmc::axis {
-
-double monotonic_now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-namespace {
-
-std::chrono::steady_clock::time_point at_monotonic(double seconds) {
-  return std::chrono::steady_clock::time_point(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-      std::chrono::duration<double>(seconds)));
-}
-
-}  // namespace
 
 RealtimeAxisNode::RealtimeAxisNode(dds::DdsContext& context, AxisNodeConfig config,
                                    std::chrono::milliseconds watchdog)
     : link_(context, std::move(config)), watchdog_(watchdog) {
-  for (const auto id : link_.config().axis_ids) axes_[id] = OwnedAxis{};
+  for (const auto& axis : link_.config().axes) axes_[axis] = OwnedAxis{};
 }
 
 void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
   link_.publish_status(netmc::dds::NODE_IDLE, "ready");
   // DDS samples are taken on this thread and handled on the io thread, with the timers.
   std::thread dds_thread([&] {
+    eprosima::fastdds::dds::WaitSet waitset;
+    waitset.attach_condition(link_.control().condition());
+    waitset.attach_condition(link_.setpoints().condition());
     while (!stop.load()) {
-      if (auto setpoint = link_.setpoints().take(std::chrono::milliseconds(100))) {
-        boost::asio::post(io_, [this, s = *setpoint] {
-          try {
-            handle(s);
-          } catch (const std::exception& error) {
-            link_.publish_status(netmc::dds::NODE_FAULT,
-                           "job " + std::to_string(s.job_id()) + ": " + error.what());
-            for (auto& [id, axis] : axes_) axis.endpoint.reset();
-          }
-        });
+      while (auto control = link_.control().try_take()) {
+        boost::asio::post(io_, [this, c = std::move(*control)] { handle(c); });
       }
+      while (auto setpoint = link_.setpoints().try_take()) {
+        boost::asio::post(io_, [this, s = *setpoint] { handle(s); });
+      }
+      eprosima::fastdds::dds::ConditionSeq active;
+      waitset.wait(active, eprosima::fastrtps::Duration_t(0, 100'000'000));
     }
   });
   boost::asio::steady_timer status_timer(io_);
   std::function<void()> report = [&] {
     bool running = false, holding = false;
-    for (const auto& [id, axis] : axes_) {
+    for (const auto& [name, axis] : axes_) {
       running = running || axis.endpoint != nullptr;
       holding = holding || axis.holding;
     }
@@ -56,7 +44,7 @@ void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
       io_.stop();
       return;
     }
-    status_timer.expires_after(std::chrono::milliseconds(500));
+    status_timer.expires_after(kStatusPeriod);
     status_timer.async_wait([&](const boost::system::error_code&) { report(); });
   };
   report();
@@ -64,72 +52,122 @@ void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
   dds_thread.join();
 }
 
-void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
-  const auto owned = axes_.find(setpoint.axis_id());
+void RealtimeAxisNode::refuse(const netmc::dds::JobControl& control, netmc::dds::AxisEventKind kind,
+                              const std::string& why) {
+  std::cerr << "netmc-axis " << link_.config().node << ": job " << control.job_id() << " of server "
+            << control.server() << " refused: " << why << std::endl;
+  netmc::dds::AxisEvent event;
+  event.axis(control.axis());
+  event.server(control.server());
+  event.job_id(control.job_id());
+  event.iteration(control.iteration());
+  event.kind(kind);
+  event.detail(why.substr(0, 255));
+  link_.publish_event(event);
+}
+
+void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
+  const auto owned = axes_.find(control.axis());
   if (owned == axes_.end()) return;
   OwnedAxis& axis = owned->second;
-  const std::uint32_t id = setpoint.axis_id();
-  switch (setpoint.kind()) {
-    case netmc::dds::SETPOINT_BEGIN_ITERATION: {
-      if (!setpoint.job_spec().empty()) {
-        static_cast<JobAxis&>(axis) = link_.start_job(setpoint);
+  const std::string& name = owned->first;
+  if (const std::string why = link_.admit(control); !why.empty()) {
+    if (control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty()) {
+      refuse(control, netmc::dds::AXIS_REFUSED, why);
+    }
+    return;
+  }
+  switch (control.kind()) {
+    case netmc::dds::CONTROL_BEGIN_ITERATION: {
+      if (!control.job_spec().empty()) {
+        if (axis.timer) axis.timer->cancel();
+        try {
+          static_cast<JobAxis&>(axis) = link_.start_job(control);
+        } catch (const std::exception& error) {
+          axis.endpoint.reset();
+          link_.release(control.server(), control.job_id());
+          refuse(control, netmc::dds::AXIS_FAULT, error.what());
+          return;
+        }
+        axis.server = control.server();
         axis.timer = std::make_unique<boost::asio::steady_timer>(io_);
       }
-      if (!axis.endpoint || axis.job_id != setpoint.job_id()) return;
-      axis.endpoint->begin_iteration(setpoint.iteration(), setpoint.start_position_m());
-      axis.iteration = setpoint.iteration();
-      axis.start_monotonic_s = setpoint.start_monotonic_s();
+      if (!axis.endpoint || axis.job_id != control.job_id() || !std::isfinite(control.start_time_s()) ||
+          !std::isfinite(control.start_position_m())) {
+        return;
+      }
+      axis.endpoint->begin_iteration(control.iteration(), control.start_position_m());
+      axis.iteration = control.iteration();
+      axis.start_time_s = control.start_time_s();
       axis.next_cycle = 0;
       axis.last_setpoint_s = 0.0;
       axis.holding = false;
+      axis.running = true;
+      axis.samples = 0;
+      axis.commands_received = 0;
       axis.server_send_times.clear();
-      schedule(axis, id);
+      schedule(axis, name);
       return;
     }
-    case netmc::dds::SETPOINT_COMMAND: {
-      if (!axis.endpoint || axis.job_id != setpoint.job_id() || axis.iteration != setpoint.iteration()) return;
-      // The setpoint leaves for the actuator now: netsim's downlink delay starts here.
-      const double now = monotonic_now_s() - axis.start_monotonic_s;
-      axis.endpoint->submit_setpoint(now, setpoint.cycle(), setpoint.command());
-      axis.server_send_times[setpoint.cycle()] = setpoint.send_time_s();
-      axis.last_setpoint_s = now;
-      axis.holding = false;
+    case netmc::dds::CONTROL_END_ITERATION:
+      if (!axis.endpoint || axis.job_id != control.job_id() || axis.iteration != control.iteration()) return;
+      end_iteration(name, axis, control.cycle());
       return;
-    }
-    case netmc::dds::SETPOINT_END_ITERATION:
-      if (!axis.endpoint || axis.job_id != setpoint.job_id()) return;
-      if (axis.timer) axis.timer->cancel();
-      axis.next_cycle = axis.cycles;  // stop sampling
-      publish_final(id, axis);
-      return;
-    case netmc::dds::SETPOINT_END_JOB:
-      if (axis.job_id == setpoint.job_id()) {
+    case netmc::dds::CONTROL_END_JOB:
+      if (axis.job_id == control.job_id()) {
         if (axis.timer) axis.timer->cancel();
         axis.endpoint.reset();
+        axis.running = false;
+        axis.holding = false;
+        link_.release(control.server(), control.job_id());
       }
       return;
   }
 }
 
-void RealtimeAxisNode::schedule(OwnedAxis& axis, std::uint32_t axis_id) {
+void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
+  const auto owned = axes_.find(setpoint.axis());
+  if (owned == axes_.end()) return;
+  OwnedAxis& axis = owned->second;
+  if (!axis.endpoint || !axis.running || axis.job_id != setpoint.job_id() ||
+      axis.iteration != setpoint.iteration() || !link_.from_holder(setpoint.server(), setpoint.job_id())) {
+    return;
+  }
+  // Nothing but a finite command of this job's cycles reaches the plant.
+  if (!std::isfinite(setpoint.command()) || !std::isfinite(setpoint.send_time_s()) ||
+      setpoint.cycle() >= axis.cycles) {
+    return;
+  }
+  // The setpoint leaves for the actuator now: netsim's downlink delay starts here.
+  const double now = link_.now_s() - axis.start_time_s;
+  axis.endpoint->submit_setpoint(now, setpoint.cycle(), setpoint.command());
+  axis.server_send_times[setpoint.cycle()] = setpoint.send_time_s();
+  axis.last_setpoint_s = now;
+  axis.holding = false;
+  ++axis.commands_received;
+}
+
+void RealtimeAxisNode::schedule(OwnedAxis& axis, const std::string& axis_name) {
   const double t = static_cast<double>(axis.next_cycle) * axis.sample_period_s;
-  axis.timer->expires_at(at_monotonic(axis.start_monotonic_s + t));
-  axis.timer->async_wait([this, axis_id](const boost::system::error_code& error) {
-    if (!error) tick(axis_id);
+  axis.timer->expires_at(dds::steady_time_at(link_.config().time_base, axis.start_time_s + t));
+  axis.timer->async_wait([this, axis_name](const boost::system::error_code& error) {
+    if (!error) tick(axis_name);
   });
 }
 
-void RealtimeAxisNode::tick(std::uint32_t axis_id) {
-  OwnedAxis& axis = axes_.at(axis_id);
-  if (!axis.endpoint || axis.next_cycle >= axis.cycles) return;
+void RealtimeAxisNode::tick(const std::string& axis_name) {
+  OwnedAxis& axis = axes_.at(axis_name);
+  if (!axis.endpoint || !axis.running || axis.next_cycle >= axis.cycles) return;
   const std::uint64_t k = axis.next_cycle;
   const double t = static_cast<double>(k) * axis.sample_period_s;
   netmc::dds::Feedback feedback;
-  feedback.axis_id(axis_id);
+  feedback.axis(axis_name);
+  feedback.server(axis.server);
   feedback.job_id(axis.job_id);
   feedback.iteration(axis.iteration);
   if (k > 0) {
     for (const auto& a : axis.endpoint->advance_to(t)) {
+      if (feedback.applied().size() >= netmc::dds::kMaxApplied) break;
       netmc::dds::AppliedSetpoint applied;
       applied.cycle(a.sequence);
       const auto sent = axis.server_send_times.find(a.sequence);  // see server_send_times
@@ -152,20 +190,26 @@ void RealtimeAxisNode::tick(std::uint32_t axis_id) {
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
   feedback.stale_setpoints(axis.endpoint->stale_setpoints());
   link_.publish(feedback);
+  ++axis.samples;
   ++axis.next_cycle;
-  if (axis.next_cycle < axis.cycles) schedule(axis, axis_id);
+  if (axis.next_cycle < axis.cycles) schedule(axis, axis_name);
 }
 
-void RealtimeAxisNode::publish_final(std::uint32_t axis_id, OwnedAxis& axis) {
-  netmc::dds::Feedback feedback;
-  feedback.axis_id(axis_id);
-  feedback.job_id(axis.job_id);
-  feedback.iteration(axis.iteration);
-  feedback.cycle(axis.cycles);
-  feedback.kind(netmc::dds::FEEDBACK_FINAL);
-  feedback.lost_setpoints(axis.endpoint->lost_setpoints());
-  feedback.stale_setpoints(axis.endpoint->stale_setpoints());
-  link_.publish(feedback);
+void RealtimeAxisNode::end_iteration(const std::string& axis_name, OwnedAxis& axis,
+                                     std::uint64_t commands_sent) {
+  if (axis.timer) axis.timer->cancel();
+  axis.running = false;
+  netmc::dds::AxisEvent event;
+  event.axis(axis_name);
+  event.server(axis.server);
+  event.job_id(axis.job_id);
+  event.iteration(axis.iteration);
+  event.kind(netmc::dds::AXIS_ITERATION_ENDED);
+  event.samples(axis.samples);
+  event.lost_setpoints(axis.endpoint->lost_setpoints());
+  event.stale_setpoints(axis.endpoint->stale_setpoints());
+  event.missing_setpoints(commands_sent > axis.commands_received ? commands_sent - axis.commands_received : 0);
+  link_.publish_event(event);
 }
 
 }  // namespace netmc::axis

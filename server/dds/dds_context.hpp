@@ -1,10 +1,15 @@
 #pragma once
 // One DDS domain participant with the netmc topics, and typed writers/readers with the QoS of
-// each kind of data. Control data (setpoints, feedback) is reliable with keep-last 64 per axis
-// in both clock modes: lockstep needs every sample (the network is emulated by netsim, so the
-// transport must not lose any), and in realtime the iteration start/stop messages travel on the
-// same topic; a writer with keep-last never blocks, and stale commands are dropped at the axis
-// by sequence number.
+// each kind of data (architecture.md, "DDS data plane"):
+//   stream    best-effort, keep-last: realtime setpoints and feedback never wait for a lost
+//             sample; the axis holds its last command, the server computes with what it has.
+//   exchange  reliable with millisecond heartbeats: lockstep, where every sample is needed and a
+//             lost one is repaired after one heartbeat period instead of Fast DDS's default 3 s.
+//   control   the same reliability for job control and axis events (rare, must not be lost).
+//   log       reliable, transient-local, keep-last 64 per job.
+//   status    reliable, transient-local, keep-last 1 per node.
+// The participant talks on the chosen interfaces only (loopback unless told otherwise): a
+// motion-control network is opened on purpose, not by default.
 
 #include <fastdds/dds/core/condition/WaitSet.hpp>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
@@ -22,27 +27,40 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace netmc::dds {
 
 enum class Transport {
-  builtin,   // Fast DDS defaults: shared memory on one host (invisible to network emulation), UDP
-  udp,       // UDPv4 only: what real hosts use and what netem/namespaces see
+  builtin,   // shared memory between processes of one host, plus UDPv4 on the chosen interfaces
+  udp,       // UDPv4 only: what real hosts use and what network emulation sees
 };
 
 struct DdsOptions {
   int domain_id = 0;
   Transport transport = Transport::builtin;
+  // IPv4 addresses or interface names; empty: loopback only. "any": every interface.
+  std::vector<std::string> interfaces;
+  // Fast DDS Discovery Servers HOST:PORT; the i-th is the server started with id i
+  // (`fastdds discovery -i i -l HOST -p PORT`). Empty: multicast discovery (or unicast on
+  // loopback).
+  std::vector<std::string> discovery_servers;
   std::string xml_profile_file;     // optional Fast DDS XML profiles, loaded first
   std::string participant_profile;  // optional participant profile name in that file
   std::string name = "netmc";
 };
 
-enum class Delivery {
-  control,            // reliable, keep-last 64 per key, volatile
-  log,                // reliable, transient-local, keep-last 64
-  status,             // reliable, transient-local, keep-last 1 (per key), automatic liveliness
-};
+enum class Delivery { stream, exchange, control, log, status };
+
+// Lab-size limits (README "Distributed runs"): instances per keyed topic, i.e. axes, nodes,
+// or jobs whose iteration logs a reader keeps.
+inline constexpr int kMaxInstances = 4096;
+// Participants on one host that find each other by unicast on loopback.
+inline constexpr int kMaxLoopbackParticipants = 64;
+
+// The interfaces of `--interface`, resolved to IPv4 addresses (names through getifaddrs).
+// Throws std::invalid_argument naming the flag for an unknown name or a malformed address.
+std::vector<std::string> resolve_interfaces(const std::vector<std::string>& interfaces);
 
 class DdsContext {
  public:
@@ -57,16 +75,43 @@ class DdsContext {
 
   eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* topic, Delivery delivery);
   eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::Topic* topic, Delivery delivery);
+  // A reader of the samples whose string `field` equals one of `values` (a content-filtered
+  // topic: Fast DDS filters at the writer where it can, so a node is not sent what it would
+  // drop). Values are names checked by the caller (no quotes).
+  eprosima::fastdds::dds::DataReader* reader_where(eprosima::fastdds::dds::Topic* topic, Delivery delivery,
+                                                   const std::string& field,
+                                                   const std::vector<std::string>& values);
+
+  // Deletes a reader made by reader() that is no longer needed (its samples, its matches).
+  void remove_reader(eprosima::fastdds::dds::DataReader* reader);
 
   std::string describe_transport() const { return transport_description_; }
+  // This participant's GUID prefix as 24 hex digits: the identity of a server or a node.
+  std::string identity() const { return identity_; }
+
+  // True once `endpoint` (a writer or reader made by this context) has matched an endpoint of
+  // every participant in `participants` (GUID prefixes as identity() prints them). A restarted
+  // node has a new prefix, so an endpoint of its dead predecessor that DDS still counts does not
+  // satisfy this.
+  bool matches_participants(const eprosima::fastdds::dds::DomainEntity* endpoint,
+                            const std::vector<std::string>& participants) const;
+  bool wait_for_participants(const eprosima::fastdds::dds::DomainEntity* endpoint,
+                             const std::vector<std::string>& participants,
+                             std::chrono::milliseconds timeout) const;
 
  private:
+  class MatchTracker;
+  eprosima::fastdds::dds::DataReader* make_reader(eprosima::fastdds::dds::TopicDescription* description,
+                                                  eprosima::fastdds::dds::Topic* topic, Delivery delivery);
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
   std::string transport_description_;
+  std::string identity_;
   bool xml_loaded_ = false;
+  int filters_ = 0;
+  std::map<const eprosima::fastdds::dds::DomainEntity*, std::unique_ptr<MatchTracker>> trackers_;
 };
 
 template <typename PubSubType>
@@ -81,7 +126,11 @@ eprosima::fastdds::dds::Topic* DdsContext::topic(const std::string& name) {
   return created;
 }
 
-// Blocking take of one valid sample with a timeout, for the lockstep loops.
+// Writes one sample; throws std::runtime_error naming the topic if DDS refuses it (out of
+// resources, not enabled, ...): no write's result is ignored.
+void write_checked(eprosima::fastdds::dds::DataWriter* writer, void* sample);
+
+// Blocking take of one valid sample with a timeout.
 template <typename Sample>
 class SampleReader {
  public:
@@ -91,8 +140,14 @@ class SampleReader {
     waitset_.attach_condition(condition);
   }
 
-  std::optional<Sample> take(std::chrono::milliseconds timeout) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
+  template <typename Rep, typename Period>
+  std::optional<Sample> take(std::chrono::duration<Rep, Period> timeout) {
+    return take_until(std::chrono::steady_clock::now() +
+                      std::chrono::duration_cast<std::chrono::steady_clock::duration>(timeout));
+  }
+
+  // Waits to the microsecond: a realtime cycle's budget is a fraction of a millisecond.
+  std::optional<Sample> take_until(std::chrono::steady_clock::time_point deadline) {
     Sample sample;
     eprosima::fastdds::dds::SampleInfo info;
     while (true) {
@@ -100,7 +155,7 @@ class SampleReader {
         if (info.valid_data) return sample;
       }
       const auto left = deadline - std::chrono::steady_clock::now();
-      if (left <= std::chrono::milliseconds(0)) return std::nullopt;
+      if (left <= std::chrono::steady_clock::duration::zero()) return std::nullopt;
       const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(left).count();
       eprosima::fastdds::dds::ConditionSeq active;
       waitset_.wait(active, eprosima::fastrtps::Duration_t(static_cast<int32_t>(ns / 1000000000),
@@ -108,7 +163,18 @@ class SampleReader {
     }
   }
 
+  std::optional<Sample> try_take() {
+    Sample sample;
+    eprosima::fastdds::dds::SampleInfo info;
+    while (reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (info.valid_data) return sample;
+    }
+    return std::nullopt;
+  }
+
   eprosima::fastdds::dds::DataReader* get() const { return reader_; }
+  // For a WaitSet that waits on several readers at once.
+  eprosima::fastdds::dds::StatusCondition& condition() { return reader_->get_statuscondition(); }
 
  private:
   eprosima::fastdds::dds::DataReader* reader_;
@@ -118,5 +184,8 @@ class SampleReader {
 // Waits until `writer` has matched at least `count` readers (discovery), up to `timeout`.
 bool wait_for_readers(eprosima::fastdds::dds::DataWriter* writer, int count,
                       std::chrono::milliseconds timeout);
+
+// A GUID prefix as 24 hex digits.
+std::string prefix_text(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix);
 
 }  // namespace netmc::dds

@@ -295,6 +295,30 @@ std::string format_seconds(double seconds) {
 
 }  // namespace
 
+void check_name(const std::string& name, const std::string& field) {
+  const bool valid = !name.empty() && name.size() <= 64 &&
+                     std::all_of(name.begin(), name.end(), [](char c) {
+                       return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                              c == '_' || c == '.' || c == '-';
+                     });
+  if (!valid) {
+    throw std::invalid_argument(field + ": expected a name of 1-64 characters A-Z a-z 0-9 _ . -, got '" +
+                                name.substr(0, 80) + "'");
+  }
+}
+
+std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec) {
+  if (spec.axes_size() == 0) return {"x", "y"};
+  if (spec.axes_size() != 2) {
+    throw std::invalid_argument("axes: a two-axis contour needs two axis names, got " +
+                                std::to_string(spec.axes_size()));
+  }
+  std::vector<std::string> names(spec.axes().begin(), spec.axes().end());
+  for (const auto& name : names) check_name(name, "axes");
+  if (names[0] == names[1]) throw std::invalid_argument("axes: the two axis names must differ, got '" + names[0] + "' twice");
+  return names;
+}
+
 void apply_defaults(netmc::v1::JobSpec& spec) {
   if (spec.plant().empty()) spec.set_plant("seed001");
   if (spec.controller().name().empty()) spec.mutable_controller()->set_name("adrc+ilccc");
@@ -315,6 +339,7 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   job.downlink = build_link(spec.downlink(), "downlink");
   job.sensor.resolution_m = spec.sensor().resolution_m();
   job.sensor.noise_stddev_m = spec.sensor().noise_stddev_m();
+  in_field("axes", [&] { return axis_names(spec); });
   if (!spec.clock().empty() && spec.clock() != "lockstep" && spec.clock() != "realtime") {
     throw std::invalid_argument("clock: expected 'lockstep' or 'realtime', got '" + spec.clock() + "'");
   }
@@ -492,6 +517,7 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   out.set_stale_setpoints(static_cast<std::uint32_t>(m.stale_setpoints));
   out.set_diverged(m.diverged);
   out.set_diverged_at_s(m.diverged_at_s);
+  out.set_clock_uncertainty_s(m.clock_uncertainty_s);
   return out;
 }
 

@@ -3,6 +3,7 @@
 // Every field is checked here; errors are std::invalid_argument naming the field.
 
 #include <string>
+#include <vector>
 
 #include "idl/job.pb.h"
 #include "server/sim/contour_job.hpp"
@@ -11,6 +12,10 @@
 
 namespace netmc::job {
 
+// The names of the axes a two-axis job drives (spec.axes, default x, y), checked.
+std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec);
+// An axis or node name: 1-64 characters of A-Z a-z 0-9 _ . - (std::invalid_argument naming `field`).
+void check_name(const std::string& name, const std::string& field);
 // Fills the defaults of paper 001 where the spec leaves a field unset.
 void apply_defaults(netmc::v1::JobSpec& spec);
 // Builds the runnable job (loads delay trace files, validates every field).

@@ -1,5 +1,7 @@
 #include "server/service/dds_job_messages.hpp"
 
+#include <algorithm>
+
 #include "netsim/delay_model.hpp"
 
 namespace netmc::service {
@@ -24,50 +26,100 @@ netmc::v1::JobSpec spec_for_axes(const netmc::v1::JobSpec& spec) {
   return out;
 }
 
-std::string axis_name(std::size_t axis) {
-  return axis == 0 ? "x" : axis == 1 ? "y" : std::to_string(axis);
-}
-
-SetpointPublisher::SetpointPublisher(eprosima::fastdds::dds::DataWriter* writer,
-                                     const netmc::v1::JobSpec& spec, std::uint64_t job_id)
-    : writer_(writer), job_id_(job_id) {
+JobPublisher::JobPublisher(const JobChannels& channels, const netmc::v1::JobSpec& spec, std::uint64_t job_id)
+    : channels_(channels), job_id_(job_id) {
   const std::string bytes = spec_for_axes(spec).SerializeAsString();
+  if (bytes.size() > netmc::dds::kMaxJobSpec) {
+    throw JobFailure("the job spec for the axes takes " + std::to_string(bytes.size()) + " bytes, more than " +
+                     std::to_string(netmc::dds::kMaxJobSpec));
+  }
   spec_bytes_.assign(bytes.begin(), bytes.end());
 }
 
-void SetpointPublisher::publish(std::uint32_t axis, std::uint32_t iteration, std::uint64_t cycle,
-                                netmc::dds::SetpointKind kind, double command,
-                                double send_time_s, double start_position_m, bool with_spec,
-                                double start_monotonic_s) {
+netmc::dds::JobControl JobPublisher::control(std::size_t axis, std::uint32_t iteration,
+                                             netmc::dds::ControlKind kind) const {
+  netmc::dds::JobControl c;
+  c.axis(channels_.axes.at(axis));
+  c.server(channels_.server);
+  c.job_id(job_id_);
+  c.iteration(iteration);
+  c.kind(kind);
+  return c;
+}
+
+void JobPublisher::begin_iteration(std::size_t axis, std::uint32_t iteration, double start_position_m,
+                                   double start_time_s) {
+  auto c = control(axis, iteration, netmc::dds::CONTROL_BEGIN_ITERATION);
+  c.start_position_m(start_position_m);
+  c.start_time_s(start_time_s);
+  if (iteration == 1) c.job_spec(spec_bytes_);
+  dds::write_checked(channels_.control, &c);
+}
+
+void JobPublisher::end_iteration(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle) {
+  auto c = control(axis, iteration, netmc::dds::CONTROL_END_ITERATION);
+  c.cycle(cycle);
+  dds::write_checked(channels_.control, &c);
+}
+
+void JobPublisher::command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle, double command,
+                           double send_time_s) {
   netmc::dds::Setpoint setpoint;
-  setpoint.axis_id(axis);
+  setpoint.axis(channels_.axes.at(axis));
+  setpoint.server(channels_.server);
   setpoint.job_id(job_id_);
   setpoint.iteration(iteration);
   setpoint.cycle(cycle);
-  setpoint.kind(kind);
   setpoint.command(command);
   setpoint.send_time_s(send_time_s);
-  setpoint.start_position_m(start_position_m);
-  setpoint.start_monotonic_s(start_monotonic_s);
-  if (with_spec) setpoint.job_spec(spec_bytes_);
-  writer_->write(&setpoint);
+  dds::write_checked(channels_.setpoints, &setpoint);
 }
 
-void SetpointPublisher::end_job(std::uint32_t axes) {
-  for (std::uint32_t axis = 0; axis < axes; ++axis) {
-    publish(axis, 0, 0, netmc::dds::SETPOINT_END_JOB, 0.0, 0.0, 0.0, false, 0.0);
+void JobPublisher::end_job() noexcept {
+  for (std::size_t axis = 0; axis < channels_.axes.size(); ++axis) {
+    try {
+      auto c = control(axis, 0, netmc::dds::CONTROL_END_JOB);
+      dds::write_checked(channels_.control, &c);
+    } catch (const std::exception&) {
+      // The axis's hold lease frees it if this is lost.
+    }
   }
 }
 
-void publish_iteration_log(eprosima::fastdds::dds::DataWriter* writer, std::uint64_t job_id,
+std::size_t axis_index(const JobChannels& channels, const std::string& axis) {
+  return static_cast<std::size_t>(std::find(channels.axes.begin(), channels.axes.end(), axis) -
+                                  channels.axes.begin());
+}
+
+void poll_axis_events(const JobChannels& channels, std::uint64_t job_id,
+                      const std::function<void(const netmc::dds::AxisEvent&)>& on_ended) {
+  while (auto event = channels.events->try_take()) {
+    if (event->server() != channels.server || event->job_id() != job_id ||
+        axis_index(channels, event->axis()) >= channels.axes.size()) {
+      continue;
+    }
+    switch (event->kind()) {
+      case netmc::dds::AXIS_REFUSED:
+        throw JobFailure("axis " + event->axis() + " refused the job: " + event->detail());
+      case netmc::dds::AXIS_FAULT:
+        throw JobFailure("axis " + event->axis() + " cannot run the job: " + event->detail());
+      case netmc::dds::AXIS_ITERATION_ENDED:
+        if (on_ended) on_ended(*event);
+        break;
+    }
+  }
+}
+
+void publish_iteration_log(const JobChannels& channels, std::uint64_t job_id,
                            const sim::ContourJob& job, const sim::IterationRecord& record) {
-  if (!writer) return;
+  if (!channels.iteration_logs) return;
   const auto& m = record.metrics;
   netmc::dds::IterationLog log;
+  log.server(channels.server);
   log.job_id(job_id);
   log.iteration(static_cast<std::uint32_t>(m.iteration));
   log.total_iterations(static_cast<std::uint32_t>(job.iterations));
-  log.controller(job.controller_name);
+  log.controller(job.controller_name.substr(0, 64));
   log.e_max_m(m.e_max_m);
   log.e_rms_m(m.e_rms_m);
   log.e_sum_m(m.e_sum_m);
@@ -83,11 +135,12 @@ void publish_iteration_log(eprosima::fastdds::dds::DataWriter* writer, std::uint
   log.tau_ca_mean_s(m.tau_ca_mean_s);
   log.tau_ca_p99_s(m.tau_ca_p99_s);
   log.tau_ca_max_s(m.tau_ca_max_s);
+  log.clock_uncertainty_s(m.clock_uncertainty_s);
   log.deadline_misses(static_cast<std::uint32_t>(m.deadline_misses));
   log.lost_feedback(static_cast<std::uint32_t>(m.lost_feedback));
   log.lost_setpoints(static_cast<std::uint32_t>(m.lost_setpoints));
   log.diverged(m.diverged);
-  writer->write(&log);
+  dds::write_checked(channels.iteration_logs, &log);
 }
 
 }  // namespace netmc::service

@@ -1,8 +1,9 @@
 #pragma once
-// What netmc-server's job runners (lockstep and realtime) say over DDS: setpoints of every kind,
-// the end of a job, and the iteration log.
+// What netmc-server's job runners (lockstep and realtime) say over DDS: job control, the
+// commands of each cycle, the iteration log, and what the axes report back about a job.
 
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,40 +16,54 @@
 
 namespace netmc::service {
 
-// An axis node stopped answering or reported a fault: the job cannot go on.
+// An axis node stopped answering, refused the job or reported a fault: the job cannot go on.
 class JobFailure : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
 struct JobChannels {
-  eprosima::fastdds::dds::DataWriter* setpoints = nullptr;
+  std::string server;                                       // this server's identity
+  std::vector<std::string> axes;                            // axis names, in the job's order
+  eprosima::fastdds::dds::DataWriter* control = nullptr;    // JobControl
+  eprosima::fastdds::dds::DataWriter* setpoints = nullptr;  // Setpoint of the job's clock
   dds::SampleReader<netmc::dds::Feedback>* feedback = nullptr;
+  dds::SampleReader<netmc::dds::AxisEvent>* events = nullptr;
   eprosima::fastdds::dds::DataWriter* iteration_logs = nullptr;
 };
 
-class SetpointPublisher {
+class JobPublisher {
  public:
-  SetpointPublisher(eprosima::fastdds::dds::DataWriter* writer, const netmc::v1::JobSpec& spec,
-                    std::uint64_t job_id);
-  void publish(std::uint32_t axis, std::uint32_t iteration, std::uint64_t cycle,
-               netmc::dds::SetpointKind kind, double command, double send_time_s,
-               double start_position_m, bool with_spec, double start_monotonic_s);
-  void end_job(std::uint32_t axes);
+  JobPublisher(const JobChannels& channels, const netmc::v1::JobSpec& spec, std::uint64_t job_id);
+  void begin_iteration(std::size_t axis, std::uint32_t iteration, double start_position_m,
+                       double start_time_s);
+  void end_iteration(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle);
+  void command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle, double command,
+               double send_time_s);
+  // Releases every axis (never throws: it runs on the way out of failed jobs too).
+  void end_job() noexcept;
   std::uint64_t job_id() const { return job_id_; }
 
  private:
-  eprosima::fastdds::dds::DataWriter* writer_;
+  netmc::dds::JobControl control(std::size_t axis, std::uint32_t iteration,
+                                 netmc::dds::ControlKind kind) const;
+
+  const JobChannels& channels_;
   std::vector<std::uint8_t> spec_bytes_;
   std::uint64_t job_id_;
 };
 
-void publish_iteration_log(eprosima::fastdds::dds::DataWriter* writer, std::uint64_t job_id,
+// Takes the axes' events of this server's job `job_id`: throws JobFailure on a refusal or a
+// fault, hands iteration ends to `on_ended`.
+void poll_axis_events(const JobChannels& channels, std::uint64_t job_id,
+                      const std::function<void(const netmc::dds::AxisEvent&)>& on_ended);
+// Index of `axis` in channels.axes, or channels.axes.size() if it is not the job's.
+std::size_t axis_index(const JobChannels& channels, const std::string& axis);
+
+void publish_iteration_log(const JobChannels& channels, std::uint64_t job_id,
                            const sim::ContourJob& job, const sim::IterationRecord& record);
 
 // The spec the axes receive: delay traces are inlined, since the trace file lives on the server.
 netmc::v1::JobSpec spec_for_axes(const netmc::v1::JobSpec& spec);
-
-std::string axis_name(std::size_t axis);
 
 }  // namespace netmc::service

@@ -25,20 +25,32 @@ const char* health_name(netmc::dds::NodeHealth health) {
     case netmc::dds::NODE_RUNNING: return "running";
     case netmc::dds::NODE_HOLD: return "hold";
     case netmc::dds::NODE_FAULT: return "fault";
+    case netmc::dds::NODE_REFUSED: return "refused";
+    case netmc::dds::NODE_LEAVING: return "leaving";
   }
   return "unknown";
 }
 
 }  // namespace
 
-JobService::JobService(dds::DdsContext& context, NodeDirectory& nodes, JobServiceOptions options)
+JobService::JobService(dds::DdsContext& context, NodeDirectory& nodes, ClockTracker& clocks,
+                       JobServiceOptions options)
     : context_(context),
       nodes_(nodes),
+      clocks_(clocks),
       options_(options),
-      setpoints_(context.writer(context.topic<netmc::dds::SetpointPubSubType>(dds::kSetpointTopic),
-                                dds::Delivery::control)),
-      feedback_(context.reader(context.topic<netmc::dds::FeedbackPubSubType>(dds::kFeedbackTopic),
-                               dds::Delivery::control)),
+      control_(context.writer(context.topic<netmc::dds::JobControlPubSubType>(dds::kJobControlTopic),
+                              dds::Delivery::control)),
+      realtime_setpoints_(context.writer(
+          context.topic<netmc::dds::SetpointPubSubType>(dds::kRealtimeSetpointTopic), dds::Delivery::stream)),
+      lockstep_setpoints_(context.writer(
+          context.topic<netmc::dds::SetpointPubSubType>(dds::kLockstepSetpointTopic), dds::Delivery::exchange)),
+      realtime_feedback_(context.reader(
+          context.topic<netmc::dds::FeedbackPubSubType>(dds::kRealtimeFeedbackTopic), dds::Delivery::stream)),
+      lockstep_feedback_(context.reader(
+          context.topic<netmc::dds::FeedbackPubSubType>(dds::kLockstepFeedbackTopic), dds::Delivery::exchange)),
+      events_(context.reader(context.topic<netmc::dds::AxisEventPubSubType>(dds::kAxisEventTopic),
+                             dds::Delivery::control)),
       iteration_logs_(context.writer(
           context.topic<netmc::dds::IterationLogPubSubType>(dds::kIterationLogTopic),
           dds::Delivery::log)),
@@ -109,15 +121,27 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
     }
     case netmc::v1::Request::kNodes: {
       const auto now = std::chrono::steady_clock::now();
+      auto& reply = *response.mutable_nodes();
+      reply.set_server(context_.identity());
+      reply.set_expiry_s(std::chrono::duration<double>(nodes_.expiry()).count());
       for (const auto& record : nodes_.nodes()) {
-        auto& info = *response.mutable_nodes()->add_nodes();
+        auto& info = *reply.add_nodes();
         info.set_node(record.status.node());
-        for (const auto id : record.status.axis_ids()) info.add_axes(id == 0 ? "x" : id == 1 ? "y" : std::to_string(id));
+        for (const auto& axis : record.status.axes()) info.add_axes(axis);
         info.set_plant(record.status.plant());
-        info.set_health(std::string(health_name(record.status.health())) +
-                        (record.status.detail().empty() ? "" : ": " + record.status.detail()));
+        const std::string health = record.refused.empty() ? health_name(record.status.health()) : "refused";
+        const std::string detail = record.refused.empty() ? record.status.detail() : record.refused;
+        info.set_health(health + (detail.empty() ? "" : ": " + detail));
         info.set_last_seen_s(std::chrono::duration<double>(now - record.last_seen).count());
         info.set_clock(record.status.clock());
+        info.set_time_base(record.status.time_base());
+        info.set_participant(record.status.participant());
+        info.set_held_by(record.status.held_by());
+        if (const auto clock = clocks_.estimate(record.status.node())) {
+          info.set_clock_measured(true);
+          info.set_clock_offset_s(clock->offset_s);
+          info.set_round_trip_s(clock->round_trip_s);
+        }
       }
       break;
     }
@@ -148,6 +172,51 @@ void JobService::work() {
   }
 }
 
+std::vector<NodeRecord> JobService::find_nodes(const Job& job, eprosima::fastdds::dds::DataWriter* setpoints) {
+  const std::string clock = job.spec.clock().empty() ? "lockstep" : job.spec.clock();
+  std::vector<NodeRecord> found;
+  std::vector<std::string> participants;
+  for (const auto& axis : job::axis_names(job.spec)) {
+    const auto deadline = std::chrono::steady_clock::now() + options_.discovery_timeout;
+    std::optional<NodeRecord> node;
+    while (!(node = nodes_.node_for_axis(axis)) && std::chrono::steady_clock::now() < deadline &&
+           !job.cancel.load()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    if (!node) {
+      throw JobFailure("no axis node for axis " + axis + " was discovered within " +
+                       std::to_string(options_.discovery_timeout.count()) + " ms");
+    }
+    if (node->status.clock() != clock) {
+      throw JobFailure("node " + node->status.node() + " runs the " + node->status.clock() +
+                       " clock but the job needs " + clock);
+    }
+    if (node->status.plant() != job.spec.plant()) {
+      throw JobFailure("node " + node->status.node() + " hosts plant '" + node->status.plant() +
+                       "' but the job needs '" + job.spec.plant() + "'");
+    }
+    if (!node->status.held_by().empty() && node->status.held_by() != context_.identity()) {
+      throw JobFailure("axis " + axis + " (node " + node->status.node() + ") is held by server " +
+                       node->status.held_by() + ", job " + std::to_string(node->status.job_id()));
+    }
+    found.push_back(*node);
+    participants.push_back(node->status.participant());
+  }
+  // The very participants that host the axes must be matched both ways (our control and
+  // setpoints to their readers, their feedback and events to ours): an endpoint of a node that
+  // died, which DDS still counts for its lease, does not do.
+  const bool realtime = clock == "realtime";
+  const auto* feedback = realtime ? realtime_feedback_.get() : lockstep_feedback_.get();
+  if (!context_.wait_for_participants(control_, participants, options_.discovery_timeout) ||
+      !context_.wait_for_participants(setpoints, participants, options_.discovery_timeout) ||
+      !context_.wait_for_participants(feedback, participants, options_.discovery_timeout) ||
+      !context_.wait_for_participants(events_.get(), participants, options_.discovery_timeout)) {
+    throw JobFailure("the axis nodes were discovered but their readers did not match within " +
+                     std::to_string(options_.discovery_timeout.count()) + " ms");
+  }
+  return found;
+}
+
 void JobService::run(Job& job) {
   netmc::v1::Response finished;
   auto& done = *finished.mutable_finished();
@@ -155,35 +224,8 @@ void JobService::run(Job& job) {
   std::string state = "done";
   try {
     if (job.cancel.load()) throw JobFailure("cancelled before it started");
-    // The job needs a node for each axis, hosting the job's plant.
-    std::set<std::string> node_names;
-    for (std::uint32_t axis = 0; axis < 2; ++axis) {
-      const auto deadline = std::chrono::steady_clock::now() + options_.discovery_timeout;
-      std::optional<NodeRecord> node;
-      while (!(node = nodes_.node_for_axis(axis, std::chrono::seconds(3))) &&
-             std::chrono::steady_clock::now() < deadline && !job.cancel.load()) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      }
-      if (!node) {
-        throw JobFailure(std::string("no axis node for axis ") + (axis == 0 ? "x" : "y") +
-                         " was discovered within " +
-                         std::to_string(options_.discovery_timeout.count()) + " ms");
-      }
-      const std::string clock = job.spec.clock().empty() ? "lockstep" : job.spec.clock();
-      if (node->status.clock() != clock) {
-        throw JobFailure("node " + node->status.node() + " runs the " + node->status.clock() +
-                         " clock but the job needs " + clock);
-      }
-      if (node->status.plant() != job.spec.plant()) {
-        throw JobFailure("node " + node->status.node() + " hosts plant '" + node->status.plant() +
-                         "' but the job needs '" + job.spec.plant() + "'");
-      }
-      node_names.insert(node->status.node());
-    }
-    if (!dds::wait_for_readers(setpoints_, static_cast<int>(node_names.size()),
-                               options_.discovery_timeout)) {
-      throw JobFailure("axis nodes were discovered but their setpoint readers did not match");
-    }
+    const bool realtime = job.spec.clock() == "realtime";
+    const std::vector<NodeRecord> nodes = find_nodes(job, realtime ? realtime_setpoints_ : lockstep_setpoints_);
     const auto on_iteration = [&](const sim::IterationRecord& record) {
       const auto metrics = job::to_proto(record.metrics);
       *done.mutable_result()->add_iterations() = metrics;
@@ -198,13 +240,37 @@ void JobService::run(Job& job) {
       *iteration.mutable_metrics() = metrics;
       reply(job, update);
     };
-    const JobChannels channels{setpoints_, &feedback_, iteration_logs_};
-    if (job.spec.clock() == "realtime") {
-      RealtimeDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout,
-                               options_.missed_cycles_limit);
+    JobChannels channels;
+    channels.server = context_.identity();
+    channels.axes = job::axis_names(job.spec);
+    channels.control = control_;
+    channels.events = &events_;
+    channels.iteration_logs = iteration_logs_;
+    if (realtime) {
+      channels.setpoints = realtime_setpoints_;
+      channels.feedback = &realtime_feedback_;
+      // Before the first iteration every node's clock must have been measured a few times.
+      const auto deadline = std::chrono::steady_clock::now() + options_.discovery_timeout;
+      for (const auto& node : nodes) {
+        while (!clocks_.estimate(node.status.node(), 4) && std::chrono::steady_clock::now() < deadline) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+      }
+      const ClockOffsets offsets = [this, &nodes](std::size_t axis) {
+        const auto estimate = clocks_.estimate(nodes.at(axis).status.node());
+        if (!estimate) {
+          throw JobFailure("node " + nodes.at(axis).status.node() +
+                           " answers no clock probe: its offset to the server is unknown");
+        }
+        return *estimate;
+      };
+      RealtimeDdsRunner runner(channels, job.spec, job.id, {options_.axis_timeout, options_.silence_limit},
+                               clocks_.time_base(), offsets);
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
       runner.run(on_iteration, job.cancel);
     } else {
+      channels.setpoints = lockstep_setpoints_;
+      channels.feedback = &lockstep_feedback_;
       LockstepDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout);
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
       runner.run(on_iteration, job.cancel);

@@ -15,6 +15,7 @@
 #include "idl/management.pb.h"
 #include "server/dds/dds_context.hpp"
 #include "server/management/management_server.hpp"
+#include "server/service/clock_tracker.hpp"
 #include "server/service/node_directory.hpp"
 
 namespace netmc::service {
@@ -22,12 +23,14 @@ namespace netmc::service {
 struct JobServiceOptions {
   std::chrono::milliseconds axis_timeout{2000};       // per lockstep exchange
   std::chrono::milliseconds discovery_timeout{10000}; // waiting for the nodes of a job
-  std::uint32_t missed_cycles_limit = 20;             // realtime: periods without feedback
+  std::chrono::milliseconds silence_limit{500};       // realtime: an axis silent this long fails
+  dds::TimeBase time_base = dds::TimeBase::monotonic; // realtime jobs' schedule
 };
 
 class JobService {
  public:
-  JobService(dds::DdsContext& context, NodeDirectory& nodes, JobServiceOptions options);
+  JobService(dds::DdsContext& context, NodeDirectory& nodes, ClockTracker& clocks,
+             JobServiceOptions options);
   ~JobService();
   JobService(const JobService&) = delete;
   JobService& operator=(const JobService&) = delete;
@@ -49,11 +52,19 @@ class JobService {
   void run(Job& job);
   void reply(Job& job, netmc::v1::Response response);
 
+  // The nodes hosting the job's axes, checked against its clock and plant, matched by DDS.
+  std::vector<NodeRecord> find_nodes(const Job& job, eprosima::fastdds::dds::DataWriter* setpoints);
+
   dds::DdsContext& context_;
   NodeDirectory& nodes_;
+  ClockTracker& clocks_;
   JobServiceOptions options_;
-  eprosima::fastdds::dds::DataWriter* setpoints_;
-  dds::SampleReader<netmc::dds::Feedback> feedback_;
+  eprosima::fastdds::dds::DataWriter* control_;
+  eprosima::fastdds::dds::DataWriter* realtime_setpoints_;
+  eprosima::fastdds::dds::DataWriter* lockstep_setpoints_;
+  dds::SampleReader<netmc::dds::Feedback> realtime_feedback_;
+  dds::SampleReader<netmc::dds::Feedback> lockstep_feedback_;
+  dds::SampleReader<netmc::dds::AxisEvent> events_;
   eprosima::fastdds::dds::DataWriter* iteration_logs_;
 
   std::mutex mutex_;

@@ -4,12 +4,12 @@
 
 namespace netmc::service {
 
-LockstepDdsRunner::LockstepDdsRunner(JobChannels channels, const netmc::v1::JobSpec& spec,
+LockstepDdsRunner::LockstepDdsRunner(const JobChannels& channels, const netmc::v1::JobSpec& spec,
                                      std::uint64_t job_id, std::chrono::milliseconds axis_timeout)
     : channels_(channels),
       job_(job::build_contour_job(spec)),
       server_(job_),
-      publisher_(channels.setpoints, spec, job_id),
+      publisher_(channels, spec, job_id),
       axis_timeout_(axis_timeout) {}
 
 std::vector<netmc::dds::Feedback> LockstepDdsRunner::collect(std::uint32_t iteration,
@@ -20,25 +20,28 @@ std::vector<netmc::dds::Feedback> LockstepDdsRunner::collect(std::uint32_t itera
   std::size_t missing = axes;
   const auto deadline = std::chrono::steady_clock::now() + axis_timeout_;
   while (missing > 0) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        deadline - std::chrono::steady_clock::now());
-    auto sample = left.count() > 0 ? channels_.feedback->take(left) : std::nullopt;
-    if (!sample) {
+    // A refusal or fault ends the job at once, with the axis's reason.
+    poll_axis_events(channels_, publisher_.job_id(), nullptr);
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) {
       std::string names;
       for (std::size_t axis = 0; axis < axes; ++axis) {
-        if (!have[axis]) names += (names.empty() ? "" : ", ") + axis_name(axis);
+        if (!have[axis]) names += (names.empty() ? "" : ", ") + channels_.axes[axis];
       }
       throw JobFailure("axis " + names + " did not answer cycle " + std::to_string(cycle) +
                        " of iteration " + std::to_string(iteration) + " within " +
                        std::to_string(axis_timeout_.count()) + " ms (node stopped or unreachable)");
     }
-    // Samples of earlier jobs or cycles may still arrive; only this exchange counts.
-    if (sample->job_id() != publisher_.job_id() || sample->iteration() != iteration ||
-        sample->cycle() != cycle || sample->axis_id() >= axes || have[sample->axis_id()]) {
+    auto sample = channels_.feedback->take_until(std::min(deadline, now + std::chrono::milliseconds(50)));
+    if (!sample) continue;
+    // Samples of other servers, earlier jobs or cycles may still arrive; only this exchange counts.
+    const std::size_t axis = axis_index(channels_, sample->axis());
+    if (sample->server() != channels_.server || sample->job_id() != publisher_.job_id() ||
+        sample->iteration() != iteration || sample->cycle() != cycle || axis >= axes || have[axis]) {
       continue;
     }
-    have[sample->axis_id()] = true;
-    out[sample->axis_id()] = std::move(*sample);
+    have[axis] = true;
+    out[axis] = std::move(*sample);
     --missing;
   }
   return out;
@@ -53,8 +56,7 @@ void LockstepDdsRunner::run(const std::function<void(const sim::IterationRecord&
     for (std::uint32_t iteration = 1; iteration <= job_.iterations && !cancel.load(); ++iteration) {
       const Eigen::Vector2d start = server_.begin_iteration(iteration);
       for (std::uint32_t axis = 0; axis < axes; ++axis) {
-        publisher_.publish(axis, iteration, 0, netmc::dds::SETPOINT_BEGIN_ITERATION, 0.0, 0.0,
-                start[static_cast<Eigen::Index>(axis)], iteration == 1, 0.0);
+        publisher_.begin_iteration(axis, iteration, start[static_cast<Eigen::Index>(axis)], 0.0);
       }
       auto responses = collect(iteration, 0);
       bool cancelled = false;
@@ -67,14 +69,14 @@ void LockstepDdsRunner::run(const std::function<void(const sim::IterationRecord&
         if (command.diverged || cancel.load()) {
           cancelled = !command.diverged;
           for (std::uint32_t axis = 0; axis < axes; ++axis) {
-            publisher_.publish(axis, iteration, k, netmc::dds::SETPOINT_END_ITERATION, 0.0, 0.0, 0.0, false, 0.0);
+            publisher_.end_iteration(axis, iteration, k);
           }
           responses = collect(iteration, k);
           break;
         }
         for (std::uint32_t axis = 0; axis < axes; ++axis) {
-          publisher_.publish(axis, iteration, k, netmc::dds::SETPOINT_COMMAND,
-                  command.command[static_cast<Eigen::Index>(axis)], command.send_time_s, 0.0, false, 0.0);
+          publisher_.command(axis, iteration, k, command.command[static_cast<Eigen::Index>(axis)],
+                             command.send_time_s);
         }
         responses = collect(iteration, k + 1);
         if (k + 1 == cycles) break;
@@ -100,15 +102,15 @@ void LockstepDdsRunner::run(const std::function<void(const sim::IterationRecord&
       }
       const sim::IterationRecord record = server_.end_iteration(lost, stale);
       if (cancelled) break;  // a partial iteration is not reported
-      publish_iteration_log(channels_.iteration_logs, publisher_.job_id(), job_, record);
+      publish_iteration_log(channels_, publisher_.job_id(), job_, record);
       if (on_iteration) on_iteration(record);
       if (record.metrics.diverged) break;
     }
   } catch (...) {
-    publisher_.end_job(axes);
+    publisher_.end_job();
     throw;
   }
-  publisher_.end_job(axes);
+  publisher_.end_job();
 }
 
 }  // namespace netmc::service

@@ -1,27 +1,25 @@
 #pragma once
 // Runs a job on remote axis nodes over DDS in lockstep (virtual time): the server side is the
 // same ContourServer as `netmc sim`, each axis node runs the same AxisEndpoint, and this class
-// carries their calls as Setpoint and Feedback samples in the same order. Results equal the
-// in-process run bit for bit.
+// carries their calls as JobControl, Setpoint and Feedback samples in the same order. Results
+// equal the in-process run bit for bit; a sample lost on the wire is repaired by DDS
+// reliability within a few heartbeat periods (Delivery::exchange).
 
 #include <atomic>
 #include <chrono>
 #include <functional>
-#include <stdexcept>
 #include <vector>
 
 #include "dds_types.h"
 #include "idl/job.pb.h"
-#include "server/dds/dds_context.hpp"
 #include "server/service/dds_job_messages.hpp"
 #include "server/sim/contour_server.hpp"
 
 namespace netmc::service {
 
-
 class LockstepDdsRunner {
  public:
-  LockstepDdsRunner(JobChannels channels, const netmc::v1::JobSpec& spec,
+  LockstepDdsRunner(const JobChannels& channels, const netmc::v1::JobSpec& spec,
                     std::uint64_t job_id, std::chrono::milliseconds axis_timeout);
 
   // Runs every iteration (stopping after an unstable one or when `cancel` is set).
@@ -34,10 +32,10 @@ class LockstepDdsRunner {
   // Feedback of `cycle` in `iteration` from every axis, in axis order.
   std::vector<netmc::dds::Feedback> collect(std::uint32_t iteration, std::uint64_t cycle);
 
-  JobChannels channels_;
+  const JobChannels& channels_;
   sim::ContourJob job_;
   sim::ContourServer server_;
-  SetpointPublisher publisher_;
+  JobPublisher publisher_;
   std::chrono::milliseconds axis_timeout_;
 };
 

@@ -16,10 +16,12 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"netmc-server: closes contouring loops of remote axis nodes over DDS"};
-  std::string listen = "127.0.0.1:7400";
+  // Not 7400: that is DDS domain 0's discovery port.
+  std::string listen = "127.0.0.1:7300";
   int axis_timeout_ms = 2000;
   int discovery_timeout_ms = 10000;
-  std::uint32_t missed_cycles = 20;
+  int silence_ms = 500;
+  netmc::dds::TimeBase time_base = netmc::dds::TimeBase::monotonic;
   netmc::dds::DdsOptions dds;
   dds.name = "netmc-server";
   app.add_option("--listen", listen, "Management endpoint HOST:PORT (port 0: any free port)");
@@ -29,15 +31,20 @@ int main(int argc, char** argv) {
   app.add_option("--discovery-timeout", discovery_timeout_ms,
                  "Milliseconds to wait for the axis nodes of a job")
       ->check(CLI::Range(1, 600000));
-  app.add_option("--missed-cycles", missed_cycles,
-                 "Realtime: periods without feedback from an axis before the job fails")
-      ->check(CLI::Range(1, 1000000));
+  app.add_option("--axis-silence", silence_ms,
+                 "Realtime: milliseconds without any feedback from an axis before the job fails "
+                 "(lost samples alone do not fail a job)")
+      ->check(CLI::Range(1, 600000));
+  netmc::dds::add_time_base_option(app, time_base);
   netmc::dds::add_dds_options(app, dds);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return e.get_exit_code() == 0 ? code : 2;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "netmc-server: error: " << e.what() << "\n";
+    return 2;
   }
   const auto colon = listen.rfind(':');
   int port = -1;
@@ -53,10 +60,11 @@ int main(int argc, char** argv) {
   try {
     netmc::dds::DdsContext context(dds);
     netmc::service::NodeDirectory nodes(context);
+    netmc::service::ClockTracker clocks(context, nodes, time_base);
     netmc::service::JobService jobs(
-        context, nodes,
+        context, nodes, clocks,
         {std::chrono::milliseconds(axis_timeout_ms), std::chrono::milliseconds(discovery_timeout_ms),
-         missed_cycles});
+         std::chrono::milliseconds(silence_ms), time_base});
     boost::asio::io_context io;
     netmc::management::ManagementServer server(
         io, listen.substr(0, colon), static_cast<std::uint16_t>(port),
@@ -69,8 +77,9 @@ int main(int argc, char** argv) {
       io.stop();
     });
     std::cout << "netmc-server: listening on " << listen.substr(0, colon) << ":" << server.port()
-              << ", DDS domain " << dds.domain_id << " (" << context.describe_transport() << ")"
-              << std::endl;
+              << ", DDS domain " << dds.domain_id << " (" << context.describe_transport()
+              << "), server " << context.identity() << ", time base "
+              << netmc::dds::time_base_name(time_base) << std::endl;
     io.run();
     return 0;
   } catch (const std::invalid_argument& e) {

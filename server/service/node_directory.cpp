@@ -1,13 +1,16 @@
 #include "server/service/node_directory.hpp"
 
+#include <iostream>
+
 #include "dds_typesPubSubTypes.h"
 #include "server/dds/topics.hpp"
 
 namespace netmc::service {
 
-NodeDirectory::NodeDirectory(dds::DdsContext& context)
+NodeDirectory::NodeDirectory(dds::DdsContext& context, std::chrono::milliseconds expiry)
     : reader_(context.reader(context.topic<netmc::dds::NodeStatusPubSubType>(dds::kNodeStatusTopic),
                              dds::Delivery::status)),
+      expiry_(expiry),
       thread_([this] { run(); }) {}
 
 NodeDirectory::~NodeDirectory() {
@@ -17,32 +20,85 @@ NodeDirectory::~NodeDirectory() {
 
 void NodeDirectory::run() {
   while (!stop_.load()) {
-    if (auto status = reader_.take(std::chrono::milliseconds(100))) {
-      std::lock_guard lock(mutex_);
-      nodes_[status->node()] = NodeRecord{*status, std::chrono::steady_clock::now()};
+    auto status = reader_.take(std::chrono::milliseconds(100));
+    const auto now = std::chrono::steady_clock::now();
+    std::lock_guard lock(mutex_);
+    if (status) {
+      const std::string name = status->node();
+      if (status->health() == netmc::dds::NODE_LEAVING) {
+        nodes_.erase(name);
+      } else if (status->health() == netmc::dds::NODE_REFUSED) {
+        std::cerr << "netmc-server: node " << name << " (" << status->participant() << ") "
+                  << status->detail() << std::endl;
+        // The node leaves; the holder it deferred to stays.
+        if (const auto it = nodes_.find(name); it != nodes_.end() && it->second.status.participant() == status->participant()) {
+          nodes_.erase(it);
+        }
+      } else {
+        auto it = nodes_.find(name);
+        if (it == nodes_.end() || it->second.status.participant() != status->participant()) {
+          // A new node, or the same name restarted (a new participant).
+          nodes_[name] = NodeRecord{*status, now, now, ""};
+        } else {
+          it->second.status = *status;
+          it->second.last_seen = now;
+        }
+      }
     }
+    expire(now);
+    judge();
+  }
+}
+
+void NodeDirectory::expire(std::chrono::steady_clock::time_point now) {
+  for (auto it = nodes_.begin(); it != nodes_.end();) {
+    it = now - it->second.last_seen > expiry_ ? nodes_.erase(it) : std::next(it);
+  }
+}
+
+void NodeDirectory::judge() {
+  // Each axis belongs to the node that claimed it first; later claimants are refused.
+  std::map<std::string, const NodeRecord*> holder;
+  for (const auto& [name, record] : nodes_) {
+    for (const auto& axis : record.status.axes()) {
+      auto& h = holder[axis];
+      if (!h || record.first_seen < h->first_seen) h = &record;
+    }
+  }
+  for (auto& [name, record] : nodes_) {
+    std::string why;
+    for (const auto& axis : record.status.axes()) {
+      if (why.empty() && holder[axis] != &record) {
+        why = "refused: axis " + axis + " is held by node " + holder[axis]->status.node();
+      }
+    }
+    if (why != record.refused && !why.empty()) {
+      std::cerr << "netmc-server: node " << name << " " << why << std::endl;
+    }
+    record.refused = why;
   }
 }
 
 std::vector<NodeRecord> NodeDirectory::nodes() const {
   std::lock_guard lock(mutex_);
   std::vector<NodeRecord> out;
-  for (const auto& [name, record] : nodes_) out.push_back(record);
+  const auto now = std::chrono::steady_clock::now();
+  for (const auto& [name, record] : nodes_) {
+    if (now - record.last_seen <= expiry_) out.push_back(record);
+  }
   return out;
 }
 
-std::optional<NodeRecord> NodeDirectory::node_for_axis(std::uint32_t axis_id,
-                                                       std::chrono::milliseconds max_age) const {
+std::optional<NodeRecord> NodeDirectory::node_for_axis(const std::string& axis) const {
   std::lock_guard lock(mutex_);
   const auto now = std::chrono::steady_clock::now();
-  std::optional<NodeRecord> newest;
   for (const auto& [name, record] : nodes_) {
-    if (now - record.last_seen > max_age) continue;
-    for (const auto id : record.status.axis_ids()) {
-      if (id == axis_id && (!newest || record.last_seen > newest->last_seen)) newest = record;
+    if (now - record.last_seen > expiry_ || !record.refused.empty()) continue;
+    for (const auto& a : record.status.axes()) {
+      if (a == axis) return record;
     }
   }
-  return newest;
+  return std::nullopt;
 }
 
 }  // namespace netmc::service

@@ -1,9 +1,12 @@
 #pragma once
 // The axis nodes the server has discovered (NodeStatus topic, reliable transient-local), with
-// their axes, plant and health. A background thread keeps it current.
+// their axes, plant and health. A node silent for kNodeExpiry (its status comes every
+// kStatusPeriod) or one that said it is leaving is forgotten. An axis belongs to the live node
+// that claimed it first; a later claimant is refused (and refuses itself: netmc-axis exits).
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -18,25 +21,32 @@ namespace netmc::service {
 
 struct NodeRecord {
   netmc::dds::NodeStatus status;
+  std::chrono::steady_clock::time_point first_seen;
   std::chrono::steady_clock::time_point last_seen;
+  std::string refused;  // why this node may not serve (an axis held by an older node)
 };
 
 class NodeDirectory {
  public:
-  explicit NodeDirectory(dds::DdsContext& context);
+  explicit NodeDirectory(dds::DdsContext& context,
+                         std::chrono::milliseconds expiry = std::chrono::milliseconds(2500));
   ~NodeDirectory();
   NodeDirectory(const NodeDirectory&) = delete;
   NodeDirectory& operator=(const NodeDirectory&) = delete;
 
+  // Live nodes, refused ones included (with the reason).
   std::vector<NodeRecord> nodes() const;
-  // The node hosting `axis_id`, if one was seen within `max_age`.
-  std::optional<NodeRecord> node_for_axis(std::uint32_t axis_id,
-                                          std::chrono::milliseconds max_age) const;
+  // The live, unrefused node hosting `axis`.
+  std::optional<NodeRecord> node_for_axis(const std::string& axis) const;
+  std::chrono::milliseconds expiry() const { return expiry_; }
 
  private:
   void run();
+  void expire(std::chrono::steady_clock::time_point now);
+  void judge();
 
   dds::SampleReader<netmc::dds::NodeStatus> reader_;
+  std::chrono::milliseconds expiry_;
   mutable std::mutex mutex_;
   std::map<std::string, NodeRecord> nodes_;
   std::atomic<bool> stop_{false};

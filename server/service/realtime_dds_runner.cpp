@@ -1,5 +1,6 @@
 #include "server/service/realtime_dds_runner.hpp"
 
+#include <algorithm>
 #include <thread>
 
 #include "server/job/job_builder.hpp"
@@ -9,101 +10,92 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double monotonic_s(Clock::time_point t) {
-  return std::chrono::duration<double>(t.time_since_epoch()).count();
-}
-
-Clock::time_point at_monotonic(double seconds) {
-  return Clock::time_point(
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)));
-}
-
 // Lead time between announcing an iteration and its t = 0, so every axis has the BEGIN sample
 // (and, in iteration 1, has built the job) before its first tick.
 constexpr double kStartLeadS = 0.25;
 
 }  // namespace
 
-RealtimeDdsRunner::RealtimeDdsRunner(JobChannels channels, const netmc::v1::JobSpec& spec,
-                                     std::uint64_t job_id, std::chrono::milliseconds axis_timeout,
-                                     std::uint32_t missed_cycles_limit)
+RealtimeDdsRunner::RealtimeDdsRunner(const JobChannels& channels, const netmc::v1::JobSpec& spec,
+                                     std::uint64_t job_id, RealtimeLimits limits, dds::TimeBase time_base,
+                                     ClockOffsets offsets)
     : channels_(channels),
       job_(job::build_contour_job(spec)),
       server_(job_),
-      publisher_(channels.setpoints, spec, job_id),
-      axis_timeout_(axis_timeout),
-      missed_cycles_limit_(missed_cycles_limit) {}
+      publisher_(channels, spec, job_id),
+      limits_(limits),
+      time_base_(time_base),
+      offsets_(std::move(offsets)) {}
 
-void RealtimeDdsRunner::submit(const netmc::dds::Feedback& feedback, double start_monotonic_s) {
-  const std::size_t axis = feedback.axis_id();
-  std::vector<sim::AppliedSetpoint> applied;
-  for (const auto& a : feedback.applied()) applied.push_back({a.cycle(), a.send_time_s(), a.arrival_time_s()});
-  server_.record_applied(axis, applied);
-  // The feedback enters the emulated uplink when it reaches the server: real latency + netsim.
-  const double received = monotonic_s(Clock::now()) - start_monotonic_s;
-  server_.submit_feedback(axis, feedback.cycle(), received,
-                          {feedback.position_m(), feedback.true_position_m()});
-  received_[{feedback.cycle(), static_cast<std::uint32_t>(axis)}] = true;
-}
-
-void RealtimeDdsRunner::gather(std::uint32_t iteration, std::uint64_t cycle, double start_monotonic_s,
-                               Clock::time_point until) {
-  const auto axes = static_cast<std::uint32_t>(job_.axes.size());
+void RealtimeDdsRunner::gather(std::uint32_t iteration, std::uint64_t cycle, Clock::time_point until) {
+  const std::size_t axes = job_.axes.size();
   const auto complete = [&] {
-    for (std::uint32_t axis = 0; axis < axes; ++axis) {
-      if (!received_.count({cycle, axis})) return false;
+    for (std::size_t axis = 0; axis < axes; ++axis) {
+      if (!received_[axis][cycle]) return false;
     }
     return true;
   };
   while (!complete()) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now());
-    auto sample = channels_.feedback->take(std::max(left, std::chrono::milliseconds(0)));
+    auto sample = channels_.feedback->take_until(until);
     if (!sample) return;  // deadline: the cycle runs with the newest feedback it has
-    if (sample->job_id() != publisher_.job_id() || sample->iteration() != iteration ||
-        sample->axis_id() >= axes) {
+    const std::size_t axis = axis_index(channels_, sample->axis());
+    if (sample->server() != channels_.server || sample->job_id() != publisher_.job_id() ||
+        sample->iteration() != iteration || axis >= axes || sample->kind() != netmc::dds::FEEDBACK_SAMPLE ||
+        sample->cycle() >= received_[axis].size() || received_[axis][sample->cycle()]) {
       continue;
     }
-    if (sample->kind() == netmc::dds::FEEDBACK_FINAL) {
-      finals_[sample->axis_id()] = *sample;
-      final_in_[sample->axis_id()] = true;
-      continue;
-    }
-    submit(*sample, start_monotonic_s);
+    received_[axis][sample->cycle()] = 1;
+    ++received_count_[axis];
+    last_heard_[axis] = Clock::now();
+    std::vector<sim::AppliedSetpoint> applied;
+    for (const auto& a : sample->applied()) applied.push_back({a.cycle(), a.send_time_s(), a.arrival_time_s()});
+    server_.record_applied(axis, applied);
+    // The feedback enters the emulated uplink when it reaches the server: real latency + netsim.
+    server_.submit_feedback(axis, sample->cycle(), job_time_s(), {sample->position_m(), sample->true_position_m()});
   }
 }
 
 void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&)>& on_iteration,
                             const std::atomic<bool>& cancel) {
-  const auto axes = static_cast<std::uint32_t>(job_.axes.size());
+  const std::size_t axes = job_.axes.size();
   const std::size_t cycles = server_.cycles();
   const double h = job_.sample_period_s;
+  const double silence_s = std::chrono::duration<double>(limits_.silence_limit).count();
   try {
     for (std::uint32_t iteration = 1; iteration <= job_.iterations && !cancel.load(); ++iteration) {
       const Eigen::Vector2d start = server_.begin_iteration(iteration);
-      const double t0 = monotonic_s(Clock::now()) + kStartLeadS;
-      received_.clear();
-      finals_.assign(axes, {});
-      final_in_.assign(axes, false);
-      for (std::uint32_t axis = 0; axis < axes; ++axis) {
-        publisher_.publish(axis, iteration, 0, netmc::dds::SETPOINT_BEGIN_ITERATION, 0.0, 0.0,
-                           start[static_cast<Eigen::Index>(axis)], iteration == 1, t0);
+      t0_s_ = dds::time_base_now_s(time_base_) + kStartLeadS;
+      const Clock::time_point t0_steady = dds::steady_time_at(time_base_, t0_s_);
+      double uncertainty = 0.0;
+      for (std::size_t axis = 0; axis < axes; ++axis) {
+        // Each node starts the iteration on its own clock: t0 plus its measured offset.
+        const netsim::ClockOffsetEstimate clock = offsets_(axis);
+        uncertainty = std::max(uncertainty, clock.uncertainty_s);
+        publisher_.begin_iteration(axis, iteration, start[static_cast<Eigen::Index>(axis)], t0_s_ + clock.offset_s);
       }
-      std::vector<std::size_t> last_heard(axes, 0);  // cycle of each axis's newest feedback
+      received_.assign(axes, std::vector<char>(cycles, 0));
+      received_count_.assign(axes, 0);
+      last_heard_.assign(axes, t0_steady);
       bool stopped_early = false;
+      std::uint64_t commands_sent = 0;
       for (std::size_t k = 0; k < cycles; ++k) {
         const double t = static_cast<double>(k) * h;
-        gather(iteration, k, t0, at_monotonic(t0 + t + job_.deadline()));
-        for (std::uint32_t axis = 0; axis < axes; ++axis) {
-          if (received_.count({k, axis})) last_heard[axis] = k;
-          if (k - last_heard[axis] > missed_cycles_limit_) {
-            throw JobFailure("axis " + axis_name(axis) + " sent no feedback for " +
-                             std::to_string(k - last_heard[axis]) + " periods (cycle " +
+        gather(iteration, k, dds::steady_time_at(time_base_, t0_s_ + t + job_.deadline()));
+        poll_axis_events(channels_, publisher_.job_id(), nullptr);
+        const auto now = Clock::now();
+        for (std::size_t axis = 0; axis < axes; ++axis) {
+          const double silent_s = std::chrono::duration<double>(now - last_heard_[axis]).count();
+          if (silent_s > silence_s) {
+            throw JobFailure("axis " + channels_.axes[axis] + " sent no feedback for " +
+                             std::to_string(static_cast<long>(silent_s * 1e3)) + " ms (" +
+                             std::to_string(static_cast<long>(silent_s / h)) + " periods, limit " +
+                             std::to_string(limits_.silence_limit.count()) + " ms) at cycle " +
                              std::to_string(k) + " of iteration " + std::to_string(iteration) +
-                             "; node stopped or unreachable)");
+                             ": node stopped or unreachable");
           }
         }
         // Act when the emulated uplink delivers (or at the deadline), as ContourServer decides.
-        std::this_thread::sleep_until(at_monotonic(t0 + server_.compute_time(k)));
+        std::this_thread::sleep_until(dds::steady_time_at(time_base_, t0_s_ + server_.compute_time(k)));
         const auto ready = Clock::now();
         const sim::CycleCommand command = server_.compute_cycle(k);
         if (command.diverged || cancel.load()) {
@@ -111,44 +103,56 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
           break;
         }
         const auto departure = Clock::now();
-        const double now = monotonic_s(departure) - t0;
-        for (std::uint32_t axis = 0; axis < axes; ++axis) {
-          publisher_.publish(axis, iteration, k, netmc::dds::SETPOINT_COMMAND,
-                             command.command[static_cast<Eigen::Index>(axis)], now, 0.0, false, 0.0);
+        const double sent_at = job_time_s();
+        for (std::size_t axis = 0; axis < axes; ++axis) {
+          publisher_.command(axis, iteration, k, command.command[static_cast<Eigen::Index>(axis)], sent_at);
         }
+        ++commands_sent;
         server_.correct_compute_delay(std::chrono::duration<double>(departure - ready).count());
       }
-      for (std::uint32_t axis = 0; axis < axes; ++axis) {
-        publisher_.publish(axis, iteration, cycles, netmc::dds::SETPOINT_END_ITERATION, 0.0, 0.0,
-                           0.0, false, 0.0);
-      }
-      // The finals carry the axes' downlink counters.
-      const auto final_deadline = Clock::now() + axis_timeout_;
-      while (std::find(final_in_.begin(), final_in_.end(), false) != final_in_.end() &&
-             Clock::now() < final_deadline) {
-        gather(iteration, cycles, t0, final_deadline);
-      }
-      std::uint64_t lost = 0, stale = 0;
-      for (std::uint32_t axis = 0; axis < axes; ++axis) {
-        if (!final_in_[axis]) {
-          throw JobFailure("axis " + axis_name(axis) + " did not confirm the end of iteration " +
-                           std::to_string(iteration) + " within " +
-                           std::to_string(axis_timeout_.count()) + " ms");
+      for (std::size_t axis = 0; axis < axes; ++axis) publisher_.end_iteration(axis, iteration, commands_sent);
+      // The axes' reports carry their downlink counters; the iteration ends when all are in.
+      std::vector<netmc::dds::AxisEvent> ended(axes);
+      std::vector<bool> ended_in(axes, false);
+      const auto final_deadline = Clock::now() + limits_.axis_timeout;
+      while (std::find(ended_in.begin(), ended_in.end(), false) != ended_in.end()) {
+        poll_axis_events(channels_, publisher_.job_id(), [&](const netmc::dds::AxisEvent& event) {
+          const std::size_t axis = axis_index(channels_, event.axis());
+          if (event.iteration() != iteration) return;
+          ended[axis] = event;
+          ended_in[axis] = true;
+        });
+        if (std::find(ended_in.begin(), ended_in.end(), false) == ended_in.end()) break;
+        if (Clock::now() >= final_deadline) {
+          for (std::size_t axis = 0; axis < axes; ++axis) {
+            if (!ended_in[axis]) {
+              throw JobFailure("axis " + channels_.axes[axis] + " did not confirm the end of iteration " +
+                               std::to_string(iteration) + " within " +
+                               std::to_string(limits_.axis_timeout.count()) + " ms");
+            }
+          }
         }
-        lost += finals_[axis].lost_setpoints();
-        stale += finals_[axis].stale_setpoints();
+        channels_.feedback->take(std::chrono::milliseconds(1));  // late samples: drained, not used
       }
-      const sim::IterationRecord record = server_.end_iteration(lost, stale);
+      std::uint64_t lost = 0, stale = 0, lost_feedback = 0;
+      for (std::size_t axis = 0; axis < axes; ++axis) {
+        lost += ended[axis].lost_setpoints() + ended[axis].missing_setpoints();
+        stale += ended[axis].stale_setpoints();
+        if (ended[axis].samples() > received_count_[axis]) lost_feedback += ended[axis].samples() - received_count_[axis];
+      }
+      sim::IterationRecord record = server_.end_iteration(lost, stale);
+      record.metrics.lost_feedback += lost_feedback;
+      record.metrics.clock_uncertainty_s = uncertainty;
       if (stopped_early) break;
-      publish_iteration_log(channels_.iteration_logs, publisher_.job_id(), job_, record);
+      publish_iteration_log(channels_, publisher_.job_id(), job_, record);
       if (on_iteration) on_iteration(record);
       if (record.metrics.diverged) break;
     }
   } catch (...) {
-    publisher_.end_job(axes);
+    publisher_.end_job();
     throw;
   }
-  publisher_.end_job(axes);
+  publisher_.end_job();
 }
 
 }  // namespace netmc::service

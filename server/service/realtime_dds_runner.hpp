@@ -1,45 +1,58 @@
 #pragma once
 // Runs a job on remote axis nodes over DDS on the wall clock. The axes sample every period on
-// their own timers; the server computes each cycle when the feedback of every axis has arrived
-// (real DDS latency plus the uplink netsim delay) or at the deadline, with the same
-// ContourServer as `netmc sim`. Delays are real plus emulated, so results vary from run to run.
+// their own timers and clocks; the server computes each cycle when the feedback of every axis
+// has arrived (real DDS latency plus the uplink netsim delay) or at the deadline, with the same
+// ContourServer as `netmc sim`. Nothing waits for a lost sample: a lost feedback leaves the
+// server computing with the newest it has, a lost setpoint leaves the axis's last command in
+// force, and both are counted. Delays are real plus emulated, so results vary from run to run.
 
 #include <atomic>
 #include <chrono>
 #include <functional>
-#include <map>
+#include <vector>
 
+#include "netsim/clock_offset_estimator.hpp"
+#include "server/dds/time_base.hpp"
 #include "server/service/dds_job_messages.hpp"
 #include "server/sim/contour_server.hpp"
 
 namespace netmc::service {
 
+struct RealtimeLimits {
+  std::chrono::milliseconds axis_timeout{2000};   // for the axes' end-of-iteration reports
+  std::chrono::milliseconds silence_limit{500};   // an axis silent this long fails the job
+};
+
+// The clock of axis `axis`'s node against the server's (throws JobFailure if unknown).
+using ClockOffsets = std::function<netsim::ClockOffsetEstimate(std::size_t axis)>;
+
 class RealtimeDdsRunner {
  public:
-  // An axis that sends no feedback for `missed_cycles_limit` periods fails the job.
-  RealtimeDdsRunner(JobChannels channels, const netmc::v1::JobSpec& spec, std::uint64_t job_id,
-                    std::chrono::milliseconds axis_timeout, std::uint32_t missed_cycles_limit);
+  RealtimeDdsRunner(const JobChannels& channels, const netmc::v1::JobSpec& spec, std::uint64_t job_id,
+                    RealtimeLimits limits, dds::TimeBase time_base, ClockOffsets offsets);
 
   void run(const std::function<void(const sim::IterationRecord&)>& on_iteration,
            const std::atomic<bool>& cancel);
   std::string controller_description() const { return server_.controller_description(); }
 
  private:
-  // Takes feedback until `cycle`'s sample of every axis is in or `until` passes.
-  void gather(std::uint32_t iteration, std::uint64_t cycle, double start_monotonic_s,
-              std::chrono::steady_clock::time_point until);
-  void submit(const netmc::dds::Feedback& feedback, double start_monotonic_s);
+  // Takes feedback until `cycle`'s sample of every axis is in or `until` passes; samples of
+  // older cycles that come late are used too (the newest wins in ContourServer).
+  void gather(std::uint32_t iteration, std::uint64_t cycle, std::chrono::steady_clock::time_point until);
+  double job_time_s() const { return dds::time_base_now_s(time_base_) - t0_s_; }
 
-  JobChannels channels_;
+  const JobChannels& channels_;
   sim::ContourJob job_;
   sim::ContourServer server_;
-  SetpointPublisher publisher_;
-  std::chrono::milliseconds axis_timeout_;
-  std::uint32_t missed_cycles_limit_;
-  // Per iteration: which samples are in, finals, counters.
-  std::map<std::pair<std::uint64_t, std::uint32_t>, bool> received_;
-  std::vector<netmc::dds::Feedback> finals_;
-  std::vector<bool> final_in_;
+  JobPublisher publisher_;
+  RealtimeLimits limits_;
+  dds::TimeBase time_base_;
+  ClockOffsets offsets_;
+  // State of the current iteration.
+  double t0_s_ = 0.0;                                      // t = 0 on the server's clock
+  std::vector<std::vector<char>> received_;                // [axis][cycle]
+  std::vector<std::uint64_t> received_count_;
+  std::vector<std::chrono::steady_clock::time_point> last_heard_;
 };
 
 }  // namespace netmc::service

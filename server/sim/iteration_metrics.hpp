@@ -34,6 +34,7 @@ struct IterationMetrics {
   std::uint64_t stale_setpoints = 0;     // arrived after a newer one, dropped
   bool diverged = false;                 // the loop went unstable; metrics cover samples before
   double diverged_at_s = 0.0;
+  double clock_uncertainty_s = 0.0;      // distributed realtime: +- on tau_sc / tau_ca
 };
 
 // One sample of a per-cycle trace (for --csv).

@@ -1,0 +1,555 @@
+# shellcheck shell=bash
+# Private test "hosts" made of Linux network namespaces, UDP loss with nftables, processes with a
+# CLOCK_MONOTONIC of their own (time namespaces), and a reliable stop of everything a test started.
+# Source it AFTER lib.sh (it needs $tmp and lib.sh's `cleanup`), from the test's main shell (not a
+# subshell: it keeps state in shell variables). Safe under `set -euo pipefail`; needs bash >= 4.4.
+#
+#   lab_init                  root + iproute2 + namespaces, or "skipped: ..." and exit 77. Picks a
+#                             tag (nmlab-PID-RANDOM, prefix of every namespace of this run) and a
+#                             subnet 10.X.Y.0/24 (in $lab_net as "10.X.Y"); creates the bridge
+#                             namespace $lab_tag-bridge (bridge br0, multicast snooping off).
+#   lab_need_nft              nft usable in a namespace (nf_tables, numgen), else exit 77.
+#   lab_need_timens           time namespaces can be made (unshare --time), else exit 77.
+#   lab_host NAME             namespace $lab_tag-NAME: lo up, eth0 (veth to br0 in the bridge
+#                             namespace) with the next address (.1, .2, ...)/24, and the route
+#                             224.0.0.0/4 dev eth0 (DDS discovery); net.ipv4.ipfrag_time 3 s.
+#                             Nothing appears in the machine's own namespace: the lab addresses
+#                             are reachable only from lab hosts, never from or to the outside.
+#   lab_addr NAME             prints the host's address (10.X.Y.N).
+#   lab_ns NAME               prints the host's namespace name (for ip netns exec / ip -n).
+#   lab_loss NAME PERCENT [out|in|both]
+#                             random loss of PERCENT % (integer 0-100) of the UDP datagrams (IPv4
+#                             and IPv6) on NAME's wire: out (default) = datagrams NAME sends,
+#                             in = datagrams sent to NAME, both = each way independently. Applied
+#                             in the bridge namespace (nftables bridge family, forward hook), so
+#                             senders never notice (no sendto error) and each receiver of a
+#                             multicast datagram draws on its own. TCP, ARP, and traffic inside a
+#                             host (lo, its own multicast loopback) are never touched. A fragmented
+#                             IPv4 datagram is lost as a whole with PERCENT % (only its first
+#                             fragment is drawn). Calling it again replaces NAME's rules; PERCENT 0
+#                             removes them. Needs lab_need_nft.
+#   lab_loss_dropped NAME     prints how many datagrams NAME's lab_loss rules dropped so far (nft
+#                             counters; 0 without rules; reset by every lab_loss call).
+#   lab_start LOGNAME HOST [--monotonic SECONDS] -- CMD...
+#                             starts CMD in the background in HOST's network namespace (HOST "-" =
+#                             the machine's own network namespace), with --monotonic inside a new
+#                             time namespace whose CLOCK_MONOTONIC is the host's + SECONDS (integer,
+#                             may be negative; the kernel refuses offsets that would put the clock
+#                             below 0 or above 2^62 ns (~146 years): reported with a clear message
+#                             and status 1; CLOCK_BOOTTIME and /proc/uptime are not shifted). Output (stdout
+#                             and stderr) in $tmp/LOGNAME.log. CMD runs in a session of its own
+#                             (setsid): the session id is the pid lab_pid prints, and lab_stop,
+#                             lab_kill and the cleanup signal the whole session.
+#   lab_pid LOGNAME           prints the session leader's pid (ip netns exec and unshare exec or
+#                             fork: with --monotonic the leader is `unshare`, CMD is its child).
+#   lab_pids LOGNAME          prints the pids of all live processes of that session.
+#   lab_kill LOGNAME [SIGNAL] sends SIGNAL (default KILL: a crash) to the whole session, no waiting.
+#   lab_wait LOGNAME [SECONDS]
+#                             waits (default 30 s) for the leader (so CMD) to exit; returns CMD's
+#                             exit status, or 124 if it was still running after SECONDS.
+#   lab_wait_log LOGNAME REGEX [SECONDS]
+#                             waits (default 10 s) until $tmp/LOGNAME.log has a line matching the
+#                             extended REGEX; on timeout prints the log to stderr and returns 1.
+#   lab_stop LOGNAME          SIGTERM to the session, waits up to $LAB_STOP_GRACE (default 5)
+#                             seconds for all its processes to end, then SIGKILL (with a message on
+#                             stderr); reaps the leader. Returns 0 once the session is empty (1 if
+#                             processes survive SIGKILL). CMD's status: lab_status LOGNAME.
+#   lab_status LOGNAME        prints the leader's exit status once lab_wait/lab_stop reaped it
+#                             (143 = ended by SIGTERM, 137 = SIGKILL).
+#   lab_exec HOST [--monotonic SECONDS] -- CMD...
+#                             runs CMD in the foreground in HOST's namespace; returns its status.
+#   lab_cleanup               (runs automatically on exit, before lib.sh's cleanup; may also be
+#                             called by the test) stops every lab_start process, kills whatever is
+#                             still in the lab's namespaces (ip netns pids), verifies that no
+#                             process of those sessions/namespaces is left, deletes the namespaces
+#                             and verifies again (by namespace inode). Returns 1 and prints the
+#                             offenders if anything remained; on exit that makes the test fail.
+#   assert_loopback_only PATTERN
+#                             for processes on the machine's own network namespace: every UDP
+#                             socket and every TCP socket (listening or connected) of a process
+#                             whose name (ss -p, i.e. /proc/PID/comm, at most 15 characters)
+#                             matches the extended regex PATTERN must be bound to 127.0.0.0/8,
+#                             ::1 or ::ffff:127.x. Wildcards (0.0.0.0, *, [::]), other addresses
+#                             and multicast groups (224.0.0.0/4, ff00::/8: they receive on all
+#                             interfaces) are printed and make it return 1, as does finding no
+#                             socket of such a process at all.
+#
+# Processes must end on SIGTERM within $LAB_STOP_GRACE seconds; otherwise they are SIGKILLed and a
+# message is printed (not a failure by itself). A process that leaves its session (setsid, daemon)
+# is still found by the cleanup through its network namespace, but only when it lives in a lab host.
+# Tests must not replace the EXIT trap after sourcing this file.
+
+if ! declare -F cleanup >/dev/null || [ -z "${tmp:-}" ]; then
+  echo "lab.sh: source lib.sh before lab.sh" >&2
+  exit 1
+fi
+
+lab_tag=""
+lab_net=""
+lab__bridge=""
+lab__next_addr=1
+lab__namespaces=()      # every namespace of this run, bridge first
+declare -A lab__inode=()  # namespace inode -> name (kept after deletion, for the final check)
+declare -A lab__hostidx=() lab__pid=() lab__state=() lab__status=()
+lab__order=()           # LOGNAMEs in start order
+
+lab__skip() { echo "skipped: $*"; exit 77; }
+lab__err() { echo "$*" >&2; return 1; }
+
+lab_init() {
+  [ -z "$lab_tag" ] || return 0
+  [ "$(id -u)" -eq 0 ] || lab__skip "network namespaces need root"
+  command -v ip >/dev/null || lab__skip "iproute2 (ip) is not installed"
+  local tag=nmlab-$$-$RANDOM err
+  if ! err=$(ip netns add "$tag-bridge" 2>&1); then
+    lab__skip "creating network namespaces is not permitted here ($err)"
+  fi
+  lab_tag=$tag
+  lab_net=10.$((100 + RANDOM % 100)).$((RANDOM % 250))
+  lab__bridge=$tag-bridge
+  lab__register_ns "$lab__bridge"
+  if ! err=$(ip -n "$lab__bridge" link add br0 type bridge mcast_snooping 0 2>&1); then
+    lab__skip "cannot create a bridge device ($err)"
+  fi
+  ip -n "$lab__bridge" link set br0 up
+  local ns stale=()
+  for ns in $(ip netns list | awk '{print $1}'); do
+    if [[ $ns =~ ^nmlab-([0-9]+)-[0-9]+-bridge$ ]] && ! kill -0 "${BASH_REMATCH[1]}" 2>/dev/null; then
+      stale+=("${ns%-bridge}-*")
+    fi
+  done
+  if [ "${#stale[@]}" -gt 0 ]; then
+    echo "lab: warning: namespaces of lab runs that died without cleanup: ${stale[*]}" \
+      "(ip netns pids / ip netns del them)" >&2
+  fi
+}
+
+lab__register_ns() {
+  lab__namespaces+=("$1")
+  local ino
+  ino=$(stat -Lc %i "/run/netns/$1")
+  lab__inode[$ino]=$1
+}
+
+lab_need_nft() {
+  lab_init
+  command -v nft >/dev/null || lab__skip "nft is not installed (package nftables)"
+  local err
+  if ! err=$(ip netns exec "$lab__bridge" nft -f - 2>&1 <<'EOF'
+table bridge lab_probe {
+  chain drop_udp { type filter hook forward priority 0; policy accept;
+    iifname "v1" ip protocol udp ip frag-off & 0x1fff == 0 numgen random mod 100 < 1 counter drop
+    oifname "v1" ip6 nexthdr udp numgen random mod 100 < 1 counter drop
+  }
+}
+delete table bridge lab_probe
+EOF
+  ); then
+    lab__skip "nftables does not work in a network namespace here ($err)"
+  fi
+}
+
+lab_need_timens() {
+  command -v unshare >/dev/null || lab__skip "unshare (util-linux) is not installed"
+  local err
+  if ! err=$(unshare --time --fork --monotonic 1 true 2>&1); then
+    lab__skip "time namespaces cannot be made here ($err)"
+  fi
+}
+
+lab_host() {
+  local name=${1:?lab_host NAME}
+  [[ $name =~ ^[A-Za-z0-9_]+$ && $name != bridge ]] || { lab__err "lab_host: bad host name '$name'"; return 1; }
+  [ -n "$lab_tag" ] || { lab__err "lab_host: call lab_init first"; return 1; }
+  [ -z "${lab__hostidx[$name]+x}" ] || { lab__err "lab_host: host $name exists"; return 1; }
+  [ "$lab__next_addr" -le 250 ] || { lab__err "lab_host: too many hosts"; return 1; }
+  local ns=$lab_tag-$name idx=$lab__next_addr
+  ip netns add "$ns" || return 1
+  lab__register_ns "$ns"
+  lab__hostidx[$name]=$idx
+  lab__next_addr=$((idx + 1))
+  ip -n "$ns" link set lo up &&
+  ip -n "$ns" link add eth0 type veth peer name "v$idx" netns "$lab__bridge" &&
+  ip -n "$lab__bridge" link set "v$idx" master br0 up &&
+  ip -n "$ns" addr add "$lab_net.$idx/24" dev eth0 &&
+  ip -n "$ns" link set eth0 up &&
+  ip -n "$ns" route add 224.0.0.0/4 dev eth0 &&
+  # Fragments orphaned by lab_loss (first fragment dropped) leave the reassembly queue after 3 s,
+  # not 30, so heavy loss of large datagrams does not fill it (ipfrag_high_thresh).
+  ip netns exec "$ns" sysctl -qw net.ipv4.ipfrag_time=3
+}
+
+lab__idx() {
+  [ -n "${lab__hostidx[${1:-}]+x}" ] || { lab__err "lab: no host '${1:-}'"; return 1; }
+  echo "${lab__hostidx[$1]}"
+}
+lab_addr() { local i; i=$(lab__idx "${1:-}") && echo "$lab_net.$i"; }
+lab_ns() { lab__idx "${1:-}" >/dev/null && echo "$lab_tag-$1"; }
+
+lab_loss() {
+  local name=${1:-} pct=${2:-} dir=${3:-out} idx
+  idx=$(lab__idx "$name") || return 1
+  [[ $pct =~ ^[0-9]+$ ]] && [ "$pct" -le 100 ] || { lab__err "lab_loss: PERCENT must be 0-100, not '$pct'"; return 1; }
+  # On the wire: in the bridge namespace, on frames entering the bridge from NAME's veth (out) or
+  # leaving it towards NAME (in). Dropping in the sender's own output path instead would make its
+  # sendto() fail with EPERM, which real loss never does. IPv4: only unfragmented datagrams and
+  # first fragments are drawn, so a fragmented datagram is lost with PERCENT % as a whole.
+  local match="numgen random mod 100 < $pct " ports=() port rules=""
+  [ "$pct" -lt 100 ] || match=""
+  case $dir in
+    out) ports=("iifname \"v$idx\"") ;;
+    in) ports=("oifname \"v$idx\"") ;;
+    both) ports=("iifname \"v$idx\"" "oifname \"v$idx\"") ;;
+    *) lab__err "lab_loss: direction must be out, in or both, not '$dir'"; return 1 ;;
+  esac
+  for port in "${ports[@]}"; do
+    rules+="    $port ip protocol udp ip frag-off & 0x1fff == 0 ${match}counter drop
+    $port ip6 nexthdr udp ${match}counter drop
+"
+  done
+  # Declaring the table first makes the delete valid whether or not it existed; one transaction.
+  local table="bridge netmc_loss_$name"
+  local script="table $table
+delete table $table
+"
+  [ "$pct" -eq 0 ] || script+="table $table {
+  chain drop_udp { type filter hook forward priority 0; policy accept;
+$rules  }
+}
+"
+  ip netns exec "$lab__bridge" nft -f - <<<"$script"
+}
+
+lab_loss_dropped() {
+  local out n total=0
+  lab__idx "${1:-}" >/dev/null || return 1
+  out=$(ip netns exec "$lab__bridge" nft list table bridge "netmc_loss_$1" 2>/dev/null) || { echo 0; return 0; }
+  for n in $(grep -o 'packets [0-9]*' <<<"$out" | awk '{print $2}'); do total=$((total + n)); done
+  echo "$total"
+}
+
+# lab__command HOST MONO CMD...: fills the array lab__cmd with the full command line.
+lab__command() {
+  local host=$1 mono=$2 ns
+  shift 2
+  lab__cmd=()
+  if [ "$host" != - ]; then
+    ns=$(lab_ns "$host") || return 1
+    lab__cmd+=(ip netns exec "$ns")
+  fi
+  if [ -n "$mono" ]; then
+    [[ $mono =~ ^-?[0-9]+$ ]] || { lab__err "lab: --monotonic takes whole seconds, not '$mono'"; return 1; }
+    lab_need_timens
+    local err now
+    if ! err=$(unshare --time --fork --monotonic "$mono" true 2>&1); then
+      now=$(awk '{printf "%d", $1}' /proc/uptime)
+      if [[ $err == *"out of range"* ]]; then
+        lab__err "lab: the kernel refuses CLOCK_MONOTONIC offset $mono s: the clock in the new time" \
+          "namespace must stay within [0, ~146 years]; the host's CLOCK_MONOTONIC is about $now s," \
+          "so negative offsets must be >= -$now ($err)"
+      else
+        lab__err "lab: cannot make a time namespace with offset $mono s ($err)"
+      fi
+      return 1
+    fi
+    # --fork: offsets apply to children only; --kill-child: if unshare dies (SIGKILL), so does CMD.
+    # unshare blocks SIGTERM/SIGINT itself, hence lab_stop signals the whole session.
+    lab__cmd+=(unshare --time --fork --kill-child --monotonic "$mono" --)
+  fi
+  lab__cmd+=("$@")
+}
+
+# lab__parse_opts [--monotonic S] -- CMD...: options of lab_start / lab_exec into lab__mono;
+# lab__nopts = how many words to shift to reach CMD.
+lab__parse_opts() {
+  lab__mono=""
+  lab__nopts=0
+  while [ $# -gt 0 ]; do
+    case $1 in
+      --monotonic) [ $# -ge 2 ] || { lab__err "lab: --monotonic needs SECONDS"; return 1; }
+                   lab__mono=$2; shift 2; lab__nopts=$((lab__nopts + 2)) ;;
+      --) lab__nopts=$((lab__nopts + 1)); shift
+          [ $# -gt 0 ] || { lab__err "lab: no command after --"; return 1; }
+          return 0 ;;
+      *) lab__err "lab: unexpected '$1' (usage: ... HOST [--monotonic SECONDS] -- CMD...)"; return 1 ;;
+    esac
+  done
+  lab__err "lab: missing -- CMD..."
+  return 1
+}
+
+lab_start() {
+  local log=${1:-} host=${2:-}
+  [ $# -ge 2 ] || { lab__err "usage: lab_start LOGNAME HOST [--monotonic SECONDS] -- CMD..."; return 1; }
+  shift 2
+  [[ $log =~ ^[A-Za-z0-9_.-]+$ ]] || { lab__err "lab_start: bad LOGNAME '$log'"; return 1; }
+  [ -z "${lab__pid[$log]+x}" ] || { lab__err "lab_start: $log was already started"; return 1; }
+  lab__parse_opts "$@" || return 1
+  shift "$lab__nopts"
+  lab__command "$host" "$lab__mono" "$@" || return 1
+  # Without job control a background child is never a process-group leader, so setsid(1) calls
+  # setsid() itself and execs: $! becomes the session (and process group) id.
+  local monitor=0 pid
+  case $- in *m*) monitor=1; set +m ;; esac
+  setsid "${lab__cmd[@]}" >"$tmp/$log.log" 2>&1 </dev/null &
+  pid=$!
+  [ "$monitor" -eq 0 ] || set -m
+  lab__pid[$log]=$pid
+  lab__state[$log]=running
+  lab__order+=("$log")
+  local i stat
+  for ((i = 0; i < 200; i++)); do   # until setsid() happened (or the process is gone)
+    { read -r stat <"/proc/$pid/stat"; } 2>/dev/null || break
+    stat=${stat##*) }
+    read -r _ _ _ stat _ <<<"$stat"
+    [ "$stat" != "$pid" ] || break
+    sleep 0.01
+  done
+}
+
+lab_exec() {
+  local host=${1:-}
+  [ $# -ge 1 ] || { lab__err "usage: lab_exec HOST [--monotonic SECONDS] -- CMD..."; return 1; }
+  shift
+  lab__parse_opts "$@" || return 1
+  shift "$lab__nopts"
+  lab__command "$host" "$lab__mono" "$@" || return 1
+  "${lab__cmd[@]}"
+}
+
+lab__known() { [ -n "${lab__pid[${1:-}]+x}" ] || { lab__err "lab: nothing started as '${1:-}'"; return 1; }; }
+lab_pid() { lab__known "${1:-}" && echo "${lab__pid[$1]}"; }
+
+# lab__members_of SID...: live (non-zombie) pids whose session is one of the SIDs.
+lab__members_of() {
+  ps -e -o pid=,sid=,stat= | awk -v s=" $* " 'index(s, " " $2 " ") && $3 !~ /^Z/ {print $1}'
+}
+lab__session_members() { lab__members_of "$1"; }
+lab_pids() { lab__known "${1:-}" && lab__session_members "${lab__pid[$1]}"; }
+
+# lab__signal_session SIGNAL SID...: to the process groups SID and every other member of the sessions.
+lab__signal_session() {
+  local sig=$1 sid p
+  shift
+  for sid in "$@"; do kill -s "$sig" -- "-$sid" 2>/dev/null || true; done
+  for p in $(lab__members_of "$@"); do kill -s "$sig" "$p" 2>/dev/null || true; done
+}
+
+lab_kill() {
+  lab__known "${1:-}" || return 1
+  lab__signal_session "${2:-KILL}" "${lab__pid[$1]}"
+}
+
+lab__now_ms() { local t=${EPOCHREALTIME/[.,]/}; echo $((t / 1000)); }
+
+lab__alive() {
+  local s
+  { read -r s <"/proc/$1/stat"; } 2>/dev/null || return 1
+  s=${s##*) }
+  [ "${s:0:1}" != Z ]
+}
+
+lab__reap() {
+  local log=$1 st=0
+  [ "${lab__state[$log]}" = running ] || return 0
+  wait "${lab__pid[$log]}" 2>/dev/null || st=$?
+  lab__status[$log]=$st
+  lab__state[$log]=reaped
+}
+
+lab_wait() {
+  lab__known "${1:-}" || return 1
+  local log=$1 limit=${2:-30} pid end
+  pid=${lab__pid[$log]}
+  end=$(($(lab__now_ms) + limit * 1000))
+  while lab__alive "$pid" && [ "$(lab__now_ms)" -lt "$end" ]; do sleep 0.05; done
+  lab__alive "$pid" && return 124
+  lab__reap "$log"
+  return "${lab__status[$log]}"
+}
+
+lab_status() { lab__known "${1:-}" && echo "${lab__status[$1]:-running}"; }
+
+lab_wait_log() {
+  local log=${1:-} re=${2:-} limit=${3:-10} end
+  end=$(($(lab__now_ms) + limit * 1000))
+  while :; do
+    grep -Eq -- "$re" "$tmp/$log.log" 2>/dev/null && return 0
+    [ "$(lab__now_ms)" -lt "$end" ] || break
+    sleep 0.05
+  done
+  echo "lab_wait_log: no line matching /$re/ in $log.log after $limit s:" >&2
+  cat "$tmp/$log.log" >&2 2>/dev/null || true
+  return 1
+}
+
+lab_stop() {
+  lab__known "${1:-}" || return 1
+  local log=$1 grace=${LAB_STOP_GRACE:-5} pid members i end
+  pid=${lab__pid[$log]}
+  members=$(lab__session_members "$pid")
+  if [ -n "$members" ]; then
+    lab__signal_session TERM "$pid"
+    end=$(($(lab__now_ms) + grace * 1000))
+    while :; do
+      sleep 0.05
+      members=$(lab__session_members "$pid")
+      [ -n "$members" ] && [ "$(lab__now_ms)" -lt "$end" ] || break
+    done
+    if [ -n "$members" ]; then
+      echo "lab_stop: $log still running ${grace} s after SIGTERM, sending SIGKILL to:" >&2
+      ps -o pid=,stat=,args= -p "$(tr '\n' ',' <<<"$members" | sed 's/,*$//')" >&2 || true
+      lab__signal_session KILL "$pid"
+      for ((i = 0; i < 60; i++)); do
+        members=$(lab__session_members "$pid")
+        [ -n "$members" ] || break
+        sleep 0.05
+      done
+    fi
+  fi
+  lab__alive "$pid" || lab__reap "$log"
+  [ -z "$members" ]
+}
+
+# lab__leftovers: pids of live processes in a lab namespace (by inode, so also after deletion) or
+# in the session of a lab_start process.
+lab__leftovers() {
+  local -A sids=() netns=()
+  local log pid sid stat ino path
+  for log in "${lab__order[@]}"; do sids[${lab__pid[$log]}]=1; done
+  if [ "${#lab__inode[@]}" -gt 0 ]; then
+    while read -r ino path; do
+      path=${path#/proc/}
+      netns[${path%%/*}]=$ino
+    done < <(stat -L -c '%i %n' /proc/[0-9]*/ns/net 2>/dev/null || true)
+  fi
+  while read -r pid sid stat; do
+    [[ $stat != Z* ]] || continue
+    if [ -n "${sids[$sid]+x}" ]; then
+      echo "$pid"
+    elif [ -n "${netns[$pid]+x}" ] && [ -n "${lab__inode[${netns[$pid]}]+x}" ]; then
+      echo "$pid"
+    fi
+  done < <(ps -e -o pid=,sid=,stat=)
+}
+
+lab_cleanup() {
+  local - rc=0 log ns i p left end
+  set +e
+  # All sessions at once: SIGTERM, a common grace period, SIGKILL for what is left.
+  local -a sessions=()
+  for log in "${lab__order[@]}"; do sessions+=("${lab__pid[$log]}"); done
+  if [ "${#sessions[@]}" -gt 0 ]; then
+    left=$(lab__members_of "${sessions[@]}")
+    if [ -n "$left" ]; then
+      lab__signal_session TERM "${sessions[@]}"
+      end=$(($(lab__now_ms) + ${LAB_STOP_GRACE:-5} * 1000))
+      while :; do
+        sleep 0.05
+        left=$(lab__members_of "${sessions[@]}")
+        [ -n "$left" ] && [ "$(lab__now_ms)" -lt "$end" ] || break
+      done
+      if [ -n "$left" ]; then
+        echo "lab cleanup: still running ${LAB_STOP_GRACE:-5} s after SIGTERM, sending SIGKILL to:" >&2
+        ps -o pid=,stat=,args= -p "$(tr '\n' ',' <<<"$left" | sed 's/,*$//')" >&2
+        lab__signal_session KILL "${sessions[@]}"
+        for ((i = 0; i < 40; i++)); do
+          [ -n "$(lab__members_of "${sessions[@]}")" ] || break
+          sleep 0.05
+        done
+      fi
+    fi
+    for log in "${lab__order[@]}"; do lab__alive "${lab__pid[$log]}" || lab__reap "$log"; done
+  fi
+  for ns in "${lab__namespaces[@]}"; do
+    p=$(ip netns pids "$ns" 2>/dev/null)
+    [ -n "$p" ] || continue
+    echo "lab cleanup: processes still in namespace $ns (not started by lab_start, or escaped" \
+      "their session): $(tr '\n' ' ' <<<"$p")" >&2
+    # shellcheck disable=SC2086 # $p: one pid a line
+    kill -TERM $p 2>/dev/null
+    for ((i = 0; i < 40; i++)); do
+      p=$(ip netns pids "$ns" 2>/dev/null); [ -n "$p" ] || break; sleep 0.05
+    done
+    # shellcheck disable=SC2086
+    [ -z "$p" ] || kill -KILL $p 2>/dev/null
+  done
+  for ((i = 0; i < 40; i++)); do left=$(lab__leftovers); [ -n "$left" ] || break; sleep 0.05; done
+  if [ -n "$left" ]; then
+    echo "lab cleanup: FAILED, processes left behind:" >&2
+    ps -o pid,ppid,sid,stat,args -p "$(tr '\n' ',' <<<"$left" | sed 's/,*$//')" >&2
+    rc=1
+  fi
+  for ((i = ${#lab__namespaces[@]} - 1; i >= 0; i--)); do
+    ns=${lab__namespaces[i]}
+    if ! ip netns del "$ns" 2>/dev/null && [ -e "/run/netns/$ns" ]; then
+      echo "lab cleanup: FAILED to delete namespace $ns" >&2
+      rc=1
+    fi
+  done
+  lab__namespaces=()
+  left=$(lab__leftovers)
+  if [ -n "$left" ]; then
+    echo "lab cleanup: FAILED, processes remain in deleted lab namespaces or sessions:" >&2
+    ps -o pid,ppid,sid,stat,args -p "$(tr '\n' ',' <<<"$left" | sed 's/,*$//')" >&2
+    rc=1
+  fi
+  return "$rc"
+}
+
+lab__on_exit() {
+  local rc=$?
+  set +e
+  if ! lab_cleanup; then
+    echo "lab: the cleanup check failed, so the test fails" >&2
+    if [ "$rc" -eq 0 ] || [ "$rc" -eq 77 ]; then rc=1; fi
+  fi
+  cleanup   # lib.sh's
+  exit "$rc"
+}
+trap lab__on_exit EXIT
+# So that the EXIT trap (and so the cleanup) also runs when the test is interrupted or terminated.
+trap 'exit 129' HUP
+trap 'exit 130' INT
+trap 'exit 143' TERM
+
+# assert_loopback_only PATTERN: see the header.
+assert_loopback_only() {
+  local pattern=${1:?assert_loopback_only PATTERN} proto line laddr procs rest
+  local names addr why whole name pid checked=0 bad=0
+  for proto in udp tcp; do
+    while IFS= read -r line; do
+      read -r _ _ _ laddr _ procs <<<"$line"   # state recv-q send-q local peer process
+      names=""
+      rest=$procs
+      while [[ $rest =~ \(\"([^\"]*)\",pid=([0-9]+) ]]; do
+        whole=${BASH_REMATCH[0]} name=${BASH_REMATCH[1]} pid=${BASH_REMATCH[2]}
+        if [[ $name =~ $pattern ]]; then names+=" $name(pid $pid)"; fi
+        rest=${rest#*"$whole"}
+      done
+      [ -n "$names" ] || continue
+      checked=$((checked + 1))
+      addr=${laddr%:*}       # strip :port
+      addr=${addr#[}
+      addr=${addr%]}
+      addr=${addr%%\%*}      # strip %interface
+      case $addr in
+        127.*|::1|::ffff:127.*) continue ;;
+        0.0.0.0|'*'|::) why="wildcard bind (all interfaces)" ;;
+        22[4-9].*|23[0-9].*|[fF][fF]*) why="multicast group bind (receives on all interfaces)" ;;
+        *) why="non-loopback address" ;;
+      esac
+      [ "$bad" -gt 0 ] || echo "assert_loopback_only: sockets of /$pattern/ not on loopback:" >&2
+      bad=$((bad + 1))
+      echo "  $proto $laddr: $why:$names" >&2
+      echo "    $line" >&2
+    done < <(ss -H -n -p "--$proto" -a)
+  done
+  if [ "$checked" -eq 0 ]; then
+    echo "assert_loopback_only: no UDP/TCP socket of a process named /$pattern/ (not running, or" \
+      "a wrong pattern: ss shows /proc/PID/comm, at most 15 characters)" >&2
+    return 1
+  fi
+  [ "$bad" -eq 0 ] || return 1
+  echo "loopback only: $checked sockets of /$pattern/"
+}

@@ -1,0 +1,185 @@
+#!/usr/bin/env bash
+# Random UDP loss on the links between lab hosts (lab.sh: network namespaces on a bridge, nftables).
+# netmc-server on host srv, one netmc-axis node per host ax and ay, the client on srv (its TCP
+# management connection is never dropped; it stays inside srv anyway).
+#
+# Loss model: `lab_loss HOST P out` on every host: each UDP datagram is drawn exactly once, on
+# its sender's link into the bridge, and lost with probability P, whichever host it goes to. So P
+# is the end-to-end loss of every datagram between two hosts, comparable to netmc sim's
+# --loss bernoulli:p=P. (`both` would draw each datagram twice, leaving its sender and reaching its
+# receiver: 1-(1-P)^2, 36 % at P = 20 %.) A multicast datagram (discovery) is lost for all its
+# receivers at once.
+#
+#  Part A, lockstep (reliable DDS, 5 ms heartbeats repair a loss): at 0, 1, 5 and 20 % loss,
+#    `netmc run --controller adrc+ilccc --iterations 3` must finish and write JSON byte-identical to
+#    `netmc sim` with the same flags. 1 % may cost at most 3 s over the lossless run; 5 % and 20 %
+#    must finish within 4 times the lossless time + 20 s (wall times are printed).
+#  Part B, realtime (best-effort setpoints and feedback; a lost one is counted, not repaired): the
+#    axes restarted with --clock realtime; at 1 % and 20 % `--iterations 2` must finish, and at 20 %
+#    report lost_setpoints + lost_feedback > 0; at 5 % `--iterations 5` must still cut e_sum by >= 80 %
+#    (ADRC+ILCCC converges). Lost counts, deadline misses and delays are printed per loss level.
+# Needs root, iproute2 and nftables; exits 77 (skipped) otherwise.
+# Set NETMC_KEEP_LOGS=DIR to keep all logs. Usage: lossy_network.sh BUILD_DIR
+set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
+build=$(cd "$1" && pwd)
+here=$(dirname "$0")
+source "$here/lib.sh"
+source "$here/lab.sh"
+extra_cleanup+=('[ -z "${NETMC_KEEP_LOGS:-}" ] || { mkdir -p "$NETMC_KEEP_LOGS" && cp -r "$tmp"/. "$NETMC_KEEP_LOGS"/; }')
+server_bin=$build/server/service/netmc-server
+axis_bin=$build/server/axis/netmc-axis
+netmc=$build/client/netmc
+lab_init
+lab_need_nft
+t_start=$EPOCHREALTIME
+hosts=(srv ax ay)
+
+fail() {
+  echo "FAIL: $*"
+  local log
+  for log in "$tmp"/*.log; do
+    [ -e "$log" ] || continue
+    echo "--- $(basename "$log") (last 10 lines)"
+    tail -n 10 "$log"
+  done
+  exit 1
+}
+seconds_since() { awk -v a="$1" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.1f", b - a }'; }
+
+for h in "${hosts[@]}"; do lab_host "$h"; done
+S=$(lab_addr srv)
+
+# set_loss P: P % on every host's outgoing UDP (see the header).
+set_loss() { local h; for h in "${hosts[@]}"; do lab_loss "$h" "$1" out; done; }
+
+# Frames each host sent into the bridge (its veth's far end, in the bridge namespace), to put the
+# nft drop counters in proportion. Prints the sum over the hosts (0 if not readable).
+sent_frames() {
+  local h n total=0
+  for h in "${hosts[@]}"; do
+    n=$(ip netns exec "$lab_tag-bridge" cat "/sys/class/net/v$(lab_addr "$h" | cut -d. -f4)/statistics/rx_packets" \
+      2>/dev/null || echo 0)
+    total=$((total + n))
+  done
+  echo "$total"
+}
+dropped_datagrams() { local h total=0; for h in "${hosts[@]}"; do total=$((total + $(lab_loss_dropped "$h"))); done; echo "$total"; }
+
+# run_loss P ITERATIONS LOGNAME [run flags...]: sets P % loss, runs the job from srv (timeout
+# 150 s), prints its wall time and the datagrams nft dropped. Sets $rc, $wall.
+run_loss() {
+  local pct=$1 iterations=$2 name=$3 t0 f0
+  shift 3
+  set_loss "$pct"
+  f0=$(sent_frames)
+  t0=$EPOCHREALTIME
+  rc=0
+  lab_exec srv -- timeout 150 "$netmc" run --server "$S:$port" --controller adrc+ilccc \
+    --iterations "$iterations" --json "$tmp/$name.json" "$@" >"$tmp/$name.out" 2>"$tmp/$name.err" || rc=$?
+  wall=$(seconds_since "$t0")
+  local dropped frames
+  dropped=$(dropped_datagrams)
+  frames=$(( $(sent_frames) - f0 ))
+  set_loss 0
+  echo "  loss $pct %: exit $rc after $wall s; nft dropped $dropped of $frames frames sent" \
+    "($(awk -v d="$dropped" -v f="$frames" 'BEGIN { printf "%.1f", f ? 100 * d / f : 0 }') %)"
+}
+
+# start_nodes CLOCK TAG: one axis node per host, waits until the server lists both.
+start_nodes() {
+  lab_start "x$2" ax -- "$axis_bin" --node "$2-x" --axes x --clock "$1" --domain "$domain" \
+    --transport udp --interface "$(lab_addr ax)"
+  lab_start "y$2" ay -- "$axis_bin" --node "$2-y" --axes y --clock "$1" --domain "$domain" \
+    --transport udp --interface "$(lab_addr ay)"
+  local n=0
+  for _ in $(seq 100); do
+    n=$(lab_exec srv -- "$netmc" nodes --server "$S:$port" | grep -cE "^$2-[xy] .*idle" || true)
+    [ "$n" -eq 2 ] && return 0
+    sleep 0.2
+  done
+  lab_exec srv -- "$netmc" nodes --server "$S:$port"
+  fail "the server lists $n of 2 $1 nodes after 20 s"
+}
+
+lab_start server srv -- "$server_bin" --listen "$S:0" --domain "$domain" --transport udp --interface "$S"
+lab_wait_log server 'listening on' 10 || fail "netmc-server did not start"
+port=$(sed -n "s/.*listening on $S:\([0-9]*\).*/\1/p" "$tmp/server.log")
+
+# --- Part A: lockstep ---------------------------------------------------------------------------
+study=(--controller adrc+ilccc --iterations 3)
+"$netmc" sim --quiet "${study[@]}" --json "$tmp/sim.json" >/dev/null
+start_nodes lockstep ls
+echo "Part A: lockstep adrc+ilccc, 3 iterations, against netmc sim ($(wc -c <"$tmp/sim.json") bytes of JSON)"
+declare -A walls=()
+for pct in 0 1 5 20; do
+  run_loss "$pct" 3 "lockstep$pct"
+  walls[$pct]=$wall
+  [ "$rc" -eq 0 ] || fail "lockstep job at $pct % loss: exit $rc: $(tail -n 3 "$tmp/lockstep$pct.err")"
+  if cmp -s "$tmp/lockstep$pct.json" "$tmp/sim.json"; then
+    echo "    identical JSON to netmc sim"
+  else
+    diff "$tmp/sim.json" "$tmp/lockstep$pct.json" | head -20
+    fail "lockstep at $pct % loss differs from netmc sim"
+  fi
+done
+lab_stop xls
+lab_stop yls
+echo "  wall times: 0 % ${walls[0]} s, 1 % ${walls[1]} s, 5 % ${walls[5]} s, 20 % ${walls[20]} s"
+awk -v w0="${walls[0]}" -v w1="${walls[1]}" -v w5="${walls[5]}" -v w20="${walls[20]}" 'BEGIN {
+  lim1 = w0 + 3; lim = 4 * w0 + 20
+  printf "  1 %%: %+.1f s over lossless (limit +3 s); 5 %%, 20 %%: limit %.1f s (4 x lossless + 20 s)\n", w1 - w0, lim
+  exit (w1 <= lim1 && w5 <= lim && w20 <= lim) ? 0 : 1
+}' || fail "lockstep under loss too slow"
+
+# --- Part B: realtime ---------------------------------------------------------------------------
+start_nodes realtime rt
+echo "Part B: realtime adrc+ilccc (best-effort control streams, h = 5 ms, 8 s iterations)"
+# rt_stats FILE: per iteration "e_sum tau_mean tau_p99 tau_max tau_sc_mean tau_ca_mean lost_feedback
+# lost_setpoints deadline_misses" (the JSON has one field a line).
+rt_stats() {
+  awk -F': ' '
+    { v = $2; gsub(/,/, "", v) }
+    /^ *"iteration":/ { if (n) print line(); n++; delete f }
+    /^ *"(e_sum_m|tau_mean_s|tau_p99_s|tau_max_s|tau_sc_mean_s|tau_ca_mean_s|lost_feedback|lost_setpoints|deadline_misses)":/ {
+      k = $1; gsub(/[" ]/, "", k); f[k] = v
+    }
+    function line() {
+      return f["e_sum_m"] + 0 " " f["tau_mean_s"] + 0 " " f["tau_p99_s"] + 0 " " f["tau_max_s"] + 0 " " \
+        f["tau_sc_mean_s"] + 0 " " f["tau_ca_mean_s"] + 0 " " f["lost_feedback"] + 0 " " \
+        f["lost_setpoints"] + 0 " " f["deadline_misses"] + 0
+    }
+    END { if (n) print line() }' "$1"
+}
+# 2 axes x 1600 samples (8 s at 5 ms) per iteration: the share of them lost.
+print_rt() {
+  awk '{
+    fb += $7; sp += $8
+    printf "    iteration %d: e_sum %7.3f mm  tau mean %.3f p99 %.3f max %.3f ms (sc %.3f, ca %.3f)" \
+      "  lost feedback %d, setpoints %d (%.1f %%, %.1f %% of 3200)  deadline misses %d\n",
+      NR, $1 * 1e3, $2 * 1e3, $3 * 1e3, $4 * 1e3, $5 * 1e3, $6 * 1e3, $7, $8, 100 * $7 / 3200, 100 * $8 / 3200, $9
+  }' "$1"
+}
+for pct in 1 20 5; do
+  iterations=$([ "$pct" = 5 ] && echo 5 || echo 2)
+  run_loss "$pct" "$iterations" "realtime$pct" --clock realtime
+  [ "$rc" -eq 0 ] || fail "realtime job at $pct % loss: exit $rc: $(tail -n 3 "$tmp/realtime$pct.err")"
+  rt_stats "$tmp/realtime$pct.json" >"$tmp/realtime$pct.txt"
+  print_rt "$tmp/realtime$pct.txt"
+  [ "$(wc -l <"$tmp/realtime$pct.txt")" -eq "$iterations" ] || fail "expected $iterations iterations at $pct %"
+  lost=$(awk '{ n += $7 + $8 } END { print n + 0 }' "$tmp/realtime$pct.txt")
+  echo "    lost feedback + setpoints: $lost"
+  if [ "$pct" = 20 ] && [ "$lost" -eq 0 ]; then fail "no lost samples counted at 20 % loss"; fi
+  if [ "$pct" = 5 ]; then
+    awk 'NR == 1 { first = $1 } { last = $1 } END {
+      cut = 1 - last / first
+      printf "    e_sum %.3f mm (iteration 1, ADRC) -> %.3f mm (iteration %d): cut %.1f %% (need >= 80 %%)\n",
+        first * 1e3, last * 1e3, NR, cut * 100
+      exit (cut >= 0.80) ? 0 : 1
+    }' "$tmp/realtime5.txt" || fail "ADRC+ILCCC did not converge at 5 % loss"
+  fi
+done
+lab_stop xrt
+lab_stop yrt
+lab_stop server
+echo "lossy network passed in $(seconds_since "$t_start") s"
