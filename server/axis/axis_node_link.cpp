@@ -43,6 +43,7 @@ AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
 AxisNodeLink::~AxisNodeLink() {
   stop_.store(true);
   probe_thread_.join();
+  if (refused_) return;  // it never served
   try {
     publish_status(netmc::dds::NODE_LEAVING, "shut down");
   } catch (const std::exception&) {
@@ -62,23 +63,26 @@ void AxisNodeLink::claim(std::chrono::milliseconds listen) {
   dds::SampleReader<netmc::dds::NodeStatus> others(reader);
   const std::set<std::string> mine(config_.axes.begin(), config_.axes.end());
   const auto deadline = std::chrono::steady_clock::now() + listen;
+  std::string conflict;
+  // The whole window, even after a conflict: by its end the servers have matched this node's
+  // status writer, so they hear the refusal too.
   while (auto status = others.take_until(deadline)) {
-    if (status->participant() == context_.identity() || status->health() == netmc::dds::NODE_REFUSED ||
-        status->health() == netmc::dds::NODE_LEAVING) {
+    if (!conflict.empty() || status->participant() == context_.identity() ||
+        status->health() == netmc::dds::NODE_REFUSED || status->health() == netmc::dds::NODE_LEAVING) {
       continue;
     }
-    std::string conflict;
     if (status->node() == config_.node) conflict = "the name " + config_.node + " is taken by a live node";
     for (const auto& axis : status->axes()) {
       if (conflict.empty() && mine.count(axis)) {
         conflict = "axis " + axis + " is held by node " + status->node();
       }
     }
-    if (!conflict.empty()) {
-      publish_status(netmc::dds::NODE_REFUSED, "refused: " + conflict);
-      throw NodeRefused(conflict);
-    }
   }
+  if (conflict.empty()) return;
+  publish_status(netmc::dds::NODE_REFUSED, "refused: " + conflict);
+  refused_ = true;
+  status_writer_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(1, 0));
+  throw NodeRefused(conflict);
 }
 
 bool AxisNodeLink::hosts(const std::string& axis) const {

@@ -102,6 +102,7 @@ class AxisNodeLink {
   std::chrono::steady_clock::time_point last_contact_{};
   std::vector<std::string> job_axes_;
 
+  bool refused_ = false;
   std::atomic<bool> stop_{false};
   std::thread probe_thread_;
 };

@@ -33,7 +33,7 @@ using eprosima::fastrtps::Duration_t;
 using eprosima::fastrtps::rtps::IPLocator;
 using eprosima::fastrtps::rtps::Locator_t;
 
-// Repair of a lost reliable sample: the writer announces what it has every 5 ms (Fast DDS's
+// Repair of a lost reliable sample: the writer announces what it has every 2 ms (Fast DDS's
 // default is 3 s), answers a NACK at once, and the reader NACKs without delay. One lost
 // sample of a lockstep exchange then costs about one heartbeat period.
 template <typename Qos>
@@ -52,7 +52,7 @@ void reader_side_filtering(DataReaderQos&) {}
 template <>
 void fast_repair(DataWriterQos& qos) {
   auto& times = qos.reliable_writer_qos().times;
-  times.heartbeatPeriod = Duration_t(0, 5'000'000);
+  times.heartbeatPeriod = Duration_t(0, 2'000'000);
   times.initialHeartbeatDelay = Duration_t(0, 1'000'000);
   times.nackResponseDelay = Duration_t(0, 0);
   times.nackSupressionDuration = Duration_t(0, 0);
@@ -240,7 +240,9 @@ DdsContext::DdsContext(const DdsOptions& options) {
                                                             options.participant_profile);
     transport_description_ = "XML profile " + options.participant_profile;
   } else {
-    // The XML default participant profile, if any, is the starting point.
+    // The XML default participant profile, if any, is the starting point (Fast DDS reads the
+    // profiles files only when asked, or inside create_participant).
+    factory->load_profiles();
     DomainParticipantQos qos = factory->get_default_participant_qos();
     qos.name(options.name);
     auto& builtin = qos.wire_protocol().builtin;
@@ -273,6 +275,12 @@ DdsContext::DdsContext(const DdsOptions& options) {
       for (const auto& text : options.discovery_servers) {
         builtin.discovery_config.m_DiscoveryServers.push_back(discovery_server(text, id++));
         servers += (servers.empty() ? "" : ",") + text;
+      }
+      // The client's own discovery traffic stays on the chosen interface, not a multicast group.
+      builtin.metatrafficMulticastLocatorList.clear();
+      if (!any) {
+        builtin.metatrafficUnicastLocatorList.clear();
+        builtin.metatrafficUnicastLocatorList.push_back(udp_locator(addresses[0], 0));
       }
       where += ", discovery server " + servers;
     } else if (loopback_only) {

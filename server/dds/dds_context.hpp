@@ -118,6 +118,11 @@ template <typename PubSubType>
 eprosima::fastdds::dds::Topic* DdsContext::topic(const std::string& name) {
   if (const auto it = topics_.find(name); it != topics_.end()) return it->second;
   eprosima::fastdds::dds::TypeSupport type(new PubSubType());
+  // The TypeObjects stay local (content filters need them here): Fast DDS 2.9 peers that
+  // register a remote TypeObject with a sequence of structs (Feedback's) crash, the Discovery
+  // Server among them (eProsima/Fast-DDS#2926).
+  type->auto_fill_type_object(false);
+  type->auto_fill_type_information(false);
   type.register_type(participant_);
   auto* created =
       participant_->create_topic(name, type.get_type_name(), eprosima::fastdds::dds::TOPIC_QOS_DEFAULT);

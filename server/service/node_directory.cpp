@@ -25,24 +25,20 @@ void NodeDirectory::run() {
     std::lock_guard lock(mutex_);
     if (status) {
       const std::string name = status->node();
-      if (status->health() == netmc::dds::NODE_LEAVING) {
-        nodes_.erase(name);
-      } else if (status->health() == netmc::dds::NODE_REFUSED) {
+      const auto it = nodes_.find(name);
+      // A refused node and a leaving one go; a rival with the same name does not remove the holder.
+      const bool same = it != nodes_.end() && it->second.status.participant() == status->participant();
+      if (status->health() == netmc::dds::NODE_REFUSED) {
         std::cerr << "netmc-server: node " << name << " (" << status->participant() << ") "
                   << status->detail() << std::endl;
-        // The node leaves; the holder it deferred to stays.
-        if (const auto it = nodes_.find(name); it != nodes_.end() && it->second.status.participant() == status->participant()) {
-          nodes_.erase(it);
-        }
+      }
+      if (status->health() == netmc::dds::NODE_LEAVING || status->health() == netmc::dds::NODE_REFUSED) {
+        if (same) nodes_.erase(it);
+      } else if (same) {
+        it->second.status = *status;
+        it->second.last_seen = now;
       } else {
-        auto it = nodes_.find(name);
-        if (it == nodes_.end() || it->second.status.participant() != status->participant()) {
-          // A new node, or the same name restarted (a new participant).
-          nodes_[name] = NodeRecord{*status, now, now, ""};
-        } else {
-          it->second.status = *status;
-          it->second.last_seen = now;
-        }
+        nodes_[name] = NodeRecord{*status, now, now, ""};  // new, or restarted (a new participant)
       }
     }
     expire(now);

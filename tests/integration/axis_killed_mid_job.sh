@@ -2,7 +2,7 @@
 # An axis process killed mid-job: the server fails the job with a clear error naming the axis,
 # the client exits non-zero with that message, the server and the other axis stay up.
 # Usage: axis_killed_mid_job.sh BUILD_DIR [lockstep|realtime]
-# Realtime: the server must notice within a few periods (--missed-cycles 10 at h = 5 ms).
+# Realtime: the server must notice within a few periods (--axis-silence 50 ms: 10 periods at h = 5 ms).
 set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 build=$1
@@ -14,7 +14,7 @@ x_pid=${pids[-1]}
 start y "$build/server/axis/netmc-axis" --node kill-y --axes y --clock "$clock" --domain "$domain" --transport udp
 y_pid=${pids[-1]}
 start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --axis-timeout 1000 \
-  --missed-cycles 10 --domain "$domain" --transport udp
+  --axis-silence 50 --domain "$domain" --transport udp
 server_pid=${pids[-1]}
 port=$(server_port 127.0.0.1)
 

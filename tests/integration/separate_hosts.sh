@@ -1,55 +1,55 @@
 #!/usr/bin/env bash
-# Separate hosts: netmc-server and each netmc-axis in its own Linux network namespace, joined by
-# veth pairs on a bridge (own addresses 10.77.0.0/24, reachable only inside these namespaces).
-# The paper-001 job runs across them over UDP (lockstep) and must equal `netmc sim`; the client
-# reaches the server's management endpoint over TCP from another namespace.
-# Needs root and `ip netns`; exits 77 (skipped) where that is not permitted.
+# Separate hosts: netmc-server, each netmc-axis and the client in network namespaces of their own
+# (lab.sh: veth pairs on a bridge, private addresses reachable only inside them). Every DDS
+# process is given its interface (--interface eth0). The paper-001 job runs across them over UDP
+# (lockstep) and must equal `netmc sim`, first with multicast discovery, then through a Fast DDS
+# Discovery Server (fast-discovery-server from fastdds-tools) with no multicast
+# route at all.
 # Usage: separate_hosts.sh BUILD_DIR [extra study flags...]
 set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 build=$(cd "$1" && pwd)
 shift
-if [ "$(id -u)" -ne 0 ] || ! command -v ip >/dev/null; then
-  echo "skipped: separate-hosts test needs root and iproute2"; exit 77
-fi
-tag=nm$$
-bridge_ns=${tag}br
-hosts=(srv ax ay)
-if ! ip netns add "$bridge_ns" 2>/dev/null; then
-  echo "skipped: creating network namespaces is not permitted here"; exit 77
-fi
 source "$(dirname "$0")/lib.sh"
-extra_cleanup+=('for h in "${hosts[@]}"; do ip netns del "$tag$h" 2>/dev/null; done'
-                'ip netns del "$bridge_ns" 2>/dev/null')
+source "$(dirname "$0")/lab.sh"
+lab_init
+for h in srv ax ay cl ds; do lab_host "$h"; done
+srv=$(lab_addr srv)
+study=("$@")
+"$build/client/netmc" sim --json "$tmp/sim.json" "${study[@]}" >/dev/null
 
-ip -n "$bridge_ns" link add br0 type bridge
-ip -n "$bridge_ns" link set br0 up
-address=1
-for h in "${hosts[@]}"; do
-  ns=$tag$h
-  ip netns add "$ns"
-  ip link add "v$tag$h" type veth peer name eth0 netns "$ns"
-  ip link set "v$tag$h" netns "$bridge_ns"
-  ip -n "$bridge_ns" link set "v$tag$h" master br0 up
-  ip -n "$ns" addr add "10.77.0.$address/24" dev eth0
-  ip -n "$ns" link set eth0 up
-  ip -n "$ns" link set lo up
-  ip -n "$ns" route add 224.0.0.0/4 dev eth0   # DDS discovery multicast
-  address=$((address + 1))
-done
+# run_study TAG DDS_FLAGS...: axis nodes, server, and the study from the client host.
+run_study() {
+  local tag=$1 port
+  shift
+  lab_start "x$tag" ax -- "$build/server/axis/netmc-axis" --node host-x --axes x --transport udp --interface eth0 "$@"
+  lab_start "y$tag" ay -- "$build/server/axis/netmc-axis" --node host-y --axes y --transport udp --interface eth0 "$@"
+  lab_start "server$tag" srv -- "$build/server/service/netmc-server" --listen "$srv:0" --transport udp \
+    --interface eth0 "$@"
+  lab_wait_log "server$tag" 'listening on' 10
+  lab_wait_log "x$tag" 'serving' 10
+  lab_wait_log "y$tag" 'serving' 10
+  port=$(sed -n "s/.*listening on $srv:\([0-9]*\).*/\1/p" "$tmp/server$tag.log")
+  lab_exec cl -- "$build/client/netmc" nodes --server "$srv:$port"
+  lab_exec cl -- "$build/client/netmc" run --server "$srv:$port" --quiet --json "$tmp/dds$tag.json" "${study[@]}" \
+    >"$tmp/dds$tag.txt" 2>&1 || { cat "$tmp/dds$tag.txt"; return 1; }
+  if cmp -s "$tmp/dds$tag.json" "$tmp/sim.json"; then
+    echo "separate hosts ($tag): identical JSON to netmc sim"
+  else
+    echo "separate hosts ($tag) differ from netmc sim:"; diff "$tmp/sim.json" "$tmp/dds$tag.json" | head -20
+    return 1
+  fi
+  for p in "x$tag" "y$tag" "server$tag"; do lab_stop "$p"; done
+}
 
-run_in() { local ns=$tag$1; shift; ip netns exec "$ns" "$@"; }
-start x run_in ax "$build/server/axis/netmc-axis" --node host-x --axes x --transport udp
-start y run_in ay "$build/server/axis/netmc-axis" --node host-y --axes y --transport udp
-start server run_in srv "$build/server/service/netmc-server" --listen 10.77.0.1:0 --transport udp
-port=$(server_port 10.77.0.1)
-
-run_in ay "$build/client/netmc" nodes --server "10.77.0.1:$port"
-run_in ay "$build/client/netmc" run --server "10.77.0.1:$port" --quiet --json "$tmp/dds.json" "$@" >"$tmp/dds.txt"
-"$build/client/netmc" sim --json "$tmp/sim.json" "$@" >/dev/null
-cat "$tmp/dds.txt"
-if cmp -s "$tmp/dds.json" "$tmp/sim.json"; then
-  echo "separate hosts (network namespaces, UDP): identical JSON to netmc sim"
+run_study multicast
+if command -v fast-discovery-server >/dev/null; then
+  for h in srv ax ay; do ip -n "$(lab_ns "$h")" route del 224.0.0.0/4 dev eth0; done
+  lab_start discovery ds -- fast-discovery-server -i 0 -l "$(lab_addr ds)" -p 11811
+  lab_wait_log discovery "Server is running" 10
+  run_study discovery-server --discovery-server "$(lab_addr ds):11811"
+  # The 2.9 tool ends on SIGINT (it ignores SIGTERM); lab's cleanup would SIGKILL it after 5 s.
+  kill -INT "$(lab_pid discovery)" 2>/dev/null || true
 else
-  echo "separate hosts differ from netmc sim:"; diff "$tmp/sim.json" "$tmp/dds.json" | head -20; exit 1
+  echo "fast-discovery-server (package fastdds-tools) not installed: discovery-server part skipped"
 fi

@@ -176,3 +176,24 @@ TEST(JobBuilder, JsonOutputUsesProtoFieldNames) {
 
 }  // namespace
 }  // namespace netmc::job
+
+namespace netmc::job {
+namespace {
+
+TEST(JobBuilder, AxisNamesDefaultToXYAndAreChecked) {
+  auto spec = valid_spec();
+  EXPECT_EQ(axis_names(spec), (std::vector<std::string>{"x", "y"}));
+  spec.add_axes("stage1.x");
+  spec.add_axes("stage1.y");
+  EXPECT_EQ(axis_names(spec), (std::vector<std::string>{"stage1.x", "stage1.y"}));
+  EXPECT_EQ(error_of(spec), "");
+  for (const auto& bad : std::vector<std::vector<std::string>>{
+           {"x"}, {"x", "x"}, {"x", "y z"}, {"x", "it's"}, {"x", std::string(65, 'a')}, {"x", ""}}) {
+    spec.clear_axes();
+    for (const auto& name : bad) spec.add_axes(name);
+    EXPECT_EQ(error_of(spec).rfind("axes: ", 0), 0u) << error_of(spec);
+  }
+}
+
+}  // namespace
+}  // namespace netmc::job
