@@ -21,10 +21,10 @@ void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
     waitset.attach_condition(link_.setpoints().condition());
     while (!stop.load()) {
       while (auto control = link_.control().try_take()) {
-        boost::asio::post(io_, [this, c = std::move(*control)] { handle(c); });
+        if (link_.hosts(control->axis())) boost::asio::post(io_, [this, c = std::move(*control)] { handle(c); });
       }
       while (auto setpoint = link_.setpoints().try_take()) {
-        boost::asio::post(io_, [this, s = *setpoint] { handle(s); });
+        if (link_.hosts(setpoint->axis())) boost::asio::post(io_, [this, s = *setpoint] { handle(s); });
       }
       eprosima::fastdds::dds::ConditionSeq active;
       waitset.wait(active, eprosima::fastrtps::Duration_t(0, 100'000'000));

@@ -23,8 +23,6 @@
 #include <set>
 #include <thread>
 
-#include "dds_typesTypeObject.h"
-
 namespace netmc::dds {
 namespace {
 
@@ -38,16 +36,6 @@ using eprosima::fastrtps::rtps::Locator_t;
 // sample of a lockstep exchange then costs about one heartbeat period.
 template <typename Qos>
 void fast_repair(Qos& qos);
-
-// Samples are filtered at the reader (reader_where), never at the writer: Fast DDS 2.9's
-// writer-side filtering lost reliable samples once a writer served many filtered readers
-// (a lockstep exchange then stalled; seen with 20 nodes), and a motion-control fleet's volumes
-// are small enough to send in full.
-void reader_side_filtering(DataWriterQos& qos) {
-  qos.writer_resource_limits().reader_filters_allocation =
-      eprosima::fastrtps::ResourceLimitedContainerConfig::fixed_size_configuration(0);
-}
-void reader_side_filtering(DataReaderQos&) {}
 
 template <>
 void fast_repair(DataWriterQos& qos) {
@@ -69,7 +57,6 @@ template <typename Qos>
 void apply(Qos& qos, Delivery delivery) {
   qos.endpoint().history_memory_policy =
       eprosima::fastrtps::rtps::DYNAMIC_REUSABLE_MEMORY_MODE;
-  reader_side_filtering(qos);
   qos.durability().kind = VOLATILE_DURABILITY_QOS;
   qos.history().kind = KEEP_LAST_HISTORY_QOS;
   int depth = 64;
@@ -220,9 +207,6 @@ class DdsContext::MatchTracker : public DataWriterListener, public DataReaderLis
 };
 
 DdsContext::DdsContext(const DdsOptions& options) {
-  // Content filters (reader_where) evaluate fields through the types' TypeObjects.
-  static std::once_flag type_objects;
-  std::call_once(type_objects, [] { registerdds_typesTypes(); });
   auto* factory = DomainParticipantFactory::get_instance();
   if (!options.xml_profile_file.empty() && !std::filesystem::is_regular_file(options.xml_profile_file)) {
     throw std::invalid_argument("--dds-profile: no such file '" + options.xml_profile_file + "'");
@@ -335,23 +319,7 @@ DataWriter* DdsContext::writer(Topic* topic, Delivery delivery) {
   return created;
 }
 
-DataReader* DdsContext::reader(Topic* topic, Delivery delivery) { return make_reader(topic, topic, delivery); }
-
-DataReader* DdsContext::reader_where(Topic* topic, Delivery delivery, const std::string& field,
-                                     const std::vector<std::string>& values) {
-  std::string expression;
-  std::vector<std::string> parameters;
-  for (const auto& value : values) {
-    expression += (expression.empty() ? "" : " OR ") + field + " = %" + std::to_string(parameters.size());
-    parameters.push_back("'" + value + "'");
-  }
-  const std::string name = topic->get_name() + "/" + field + "=" + std::to_string(filters_++);
-  auto* filtered = participant_->create_contentfilteredtopic(name, topic, expression, parameters);
-  if (!filtered) throw std::runtime_error("dds: cannot filter " + topic->get_name() + " by " + expression);
-  return make_reader(filtered, topic, delivery);
-}
-
-DataReader* DdsContext::make_reader(TopicDescription* description, Topic* topic, Delivery delivery) {
+DataReader* DdsContext::reader(Topic* topic, Delivery delivery) {
   DataReaderQos qos = DATAREADER_QOS_DEFAULT;
   // An XML <data_reader profile_name="TOPIC"> replaces the built-in QoS of that topic.
   if (!xml_loaded_ ||
@@ -360,7 +328,7 @@ DataReader* DdsContext::make_reader(TopicDescription* description, Topic* topic,
     apply(qos, delivery);
   }
   auto tracker = std::make_unique<MatchTracker>();
-  auto* created = subscriber_->create_datareader(description, qos, tracker.get(), StatusMask::subscription_matched());
+  auto* created = subscriber_->create_datareader(topic, qos, tracker.get(), StatusMask::subscription_matched());
   if (!created) throw std::runtime_error("dds: cannot create a reader for " + topic->get_name());
   trackers_[created] = std::move(tracker);
   return created;

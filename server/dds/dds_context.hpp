@@ -75,12 +75,6 @@ class DdsContext {
 
   eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* topic, Delivery delivery);
   eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::Topic* topic, Delivery delivery);
-  // A reader of the samples whose string `field` equals one of `values` (a content-filtered
-  // topic: Fast DDS filters at the writer where it can, so a node is not sent what it would
-  // drop). Values are names checked by the caller (no quotes).
-  eprosima::fastdds::dds::DataReader* reader_where(eprosima::fastdds::dds::Topic* topic, Delivery delivery,
-                                                   const std::string& field,
-                                                   const std::vector<std::string>& values);
 
   // Deletes a reader made by reader() that is no longer needed (its samples, its matches).
   void remove_reader(eprosima::fastdds::dds::DataReader* reader);
@@ -101,8 +95,6 @@ class DdsContext {
 
  private:
   class MatchTracker;
-  eprosima::fastdds::dds::DataReader* make_reader(eprosima::fastdds::dds::TopicDescription* description,
-                                                  eprosima::fastdds::dds::Topic* topic, Delivery delivery);
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
@@ -110,7 +102,6 @@ class DdsContext {
   std::string transport_description_;
   std::string identity_;
   bool xml_loaded_ = false;
-  int filters_ = 0;
   std::map<const eprosima::fastdds::dds::DomainEntity*, std::unique_ptr<MatchTracker>> trackers_;
 };
 
@@ -118,11 +109,6 @@ template <typename PubSubType>
 eprosima::fastdds::dds::Topic* DdsContext::topic(const std::string& name) {
   if (const auto it = topics_.find(name); it != topics_.end()) return it->second;
   eprosima::fastdds::dds::TypeSupport type(new PubSubType());
-  // The TypeObjects stay local (content filters need them here): Fast DDS 2.9 peers that
-  // register a remote TypeObject with a sequence of structs (Feedback's) crash, the Discovery
-  // Server among them (eProsima/Fast-DDS#2926).
-  type->auto_fill_type_object(false);
-  type->auto_fill_type_information(false);
   type.register_type(participant_);
   auto* created =
       participant_->create_topic(name, type.get_type_name(), eprosima::fastdds::dds::TOPIC_QOS_DEFAULT);
