@@ -14,6 +14,12 @@ namespace {
 
 bool realtime(const AxisNodeConfig& config) { return config.clock == "realtime"; }
 
+std::vector<std::string> axis_partitions(const std::vector<std::string>& axes) {
+  std::vector<std::string> out;
+  for (const auto& axis : axes) out.push_back(dds::partition_of_axis(axis));
+  return out;
+}
+
 }  // namespace
 
 AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
@@ -29,15 +35,16 @@ AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
           context.topic<netmc::dds::NodeStatusPubSubType>(dds::kNodeStatusTopic), dds::Delivery::status)),
       reply_writer_(context.writer(context.topic<netmc::dds::ClockReplyPubSubType>(dds::kClockReplyTopic),
                                    dds::Delivery::stream)),
-      // Every node reads every axis's control and setpoints and drops the others' at once, on
-      // the DDS thread: Fast DDS 2.9's content filters cost more per sample (a dynamic type is
-      // built for each) than the dropped samples do.
+      // Setpoints in the partitions of this node's axes only: at hundreds of cycles a second, a
+      // node that were sent every axis's would spend its CPU dropping them. (Fast DDS 2.9's
+      // content filters cost more: a dynamic type is built per sample.) Job control is rare and
+      // goes to every node, which drops the others' on the DDS thread.
       control_(context.reader(context.topic<netmc::dds::JobControlPubSubType>(dds::kJobControlTopic),
                               dds::Delivery::control)),
       setpoints_(context.reader(
           context.topic<netmc::dds::SetpointPubSubType>(realtime(config_) ? dds::kRealtimeSetpointTopic
                                                                           : dds::kLockstepSetpointTopic),
-          realtime(config_) ? dds::Delivery::stream : dds::Delivery::exchange)),
+          realtime(config_) ? dds::Delivery::stream : dds::Delivery::exchange, axis_partitions(config_.axes))),
       probes_(context.reader(context.topic<netmc::dds::ClockProbePubSubType>(dds::kClockProbeTopic),
                              dds::Delivery::stream)),
       probe_thread_([this] { answer_probes(); }) {}

@@ -303,39 +303,59 @@ DdsContext::~DdsContext() {
   }
 }
 
-DataWriter* DdsContext::writer(Topic* topic, Delivery delivery) {
+Publisher* DdsContext::publisher_for(const std::string& partition) {
+  if (partition.empty()) return publisher_;
+  auto& publisher = partition_publishers_[partition];
+  if (!publisher) {
+    PublisherQos qos = PUBLISHER_QOS_DEFAULT;
+    qos.partition().push_back(partition.c_str());
+    publisher = participant_->create_publisher(qos);
+    if (!publisher) throw std::runtime_error("dds: cannot create a publisher for partition " + partition);
+  }
+  return publisher;
+}
+
+DataWriter* DdsContext::writer(Topic* topic, Delivery delivery, const std::string& partition) {
+  Publisher* publisher = publisher_for(partition);
   DataWriterQos qos = DATAWRITER_QOS_DEFAULT;
   // An XML <data_writer profile_name="TOPIC"> replaces the built-in QoS of that topic.
   if (!xml_loaded_ ||
-      publisher_->get_datawriter_qos_from_profile(topic->get_name(), qos) != ReturnCode_t::RETCODE_OK) {
+      publisher->get_datawriter_qos_from_profile(topic->get_name(), qos) != ReturnCode_t::RETCODE_OK) {
     qos = DATAWRITER_QOS_DEFAULT;
     apply(qos, delivery);
   }
   auto tracker = std::make_unique<MatchTracker>();
-  auto* created = publisher_->create_datawriter(topic, qos, tracker.get(),
+  auto* created = publisher->create_datawriter(topic, qos, tracker.get(),
                                                 StatusMask::publication_matched());
   if (!created) throw std::runtime_error("dds: cannot create a writer for " + topic->get_name());
   trackers_[created] = std::move(tracker);
   return created;
 }
 
-DataReader* DdsContext::reader(Topic* topic, Delivery delivery) {
+DataReader* DdsContext::reader(Topic* topic, Delivery delivery, const std::vector<std::string>& partitions) {
+  Subscriber* subscriber = subscriber_;
+  if (!partitions.empty()) {
+    SubscriberQos subscriber_qos = SUBSCRIBER_QOS_DEFAULT;
+    for (const auto& partition : partitions) subscriber_qos.partition().push_back(partition.c_str());
+    subscriber = participant_->create_subscriber(subscriber_qos);
+    if (!subscriber) throw std::runtime_error("dds: cannot create a subscriber for " + topic->get_name());
+  }
   DataReaderQos qos = DATAREADER_QOS_DEFAULT;
   // An XML <data_reader profile_name="TOPIC"> replaces the built-in QoS of that topic.
   if (!xml_loaded_ ||
-      subscriber_->get_datareader_qos_from_profile(topic->get_name(), qos) != ReturnCode_t::RETCODE_OK) {
+      subscriber->get_datareader_qos_from_profile(topic->get_name(), qos) != ReturnCode_t::RETCODE_OK) {
     qos = DATAREADER_QOS_DEFAULT;
     apply(qos, delivery);
   }
   auto tracker = std::make_unique<MatchTracker>();
-  auto* created = subscriber_->create_datareader(topic, qos, tracker.get(), StatusMask::subscription_matched());
+  auto* created = subscriber->create_datareader(topic, qos, tracker.get(), StatusMask::subscription_matched());
   if (!created) throw std::runtime_error("dds: cannot create a reader for " + topic->get_name());
   trackers_[created] = std::move(tracker);
   return created;
 }
 
 void DdsContext::remove_reader(DataReader* reader) {
-  subscriber_->delete_datareader(reader);
+  const_cast<Subscriber*>(reader->get_subscriber())->delete_datareader(reader);
   trackers_.erase(reader);
 }
 

@@ -73,8 +73,13 @@ class DdsContext {
   template <typename PubSubType>
   eprosima::fastdds::dds::Topic* topic(const std::string& name);
 
-  eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* topic, Delivery delivery);
-  eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::Topic* topic, Delivery delivery);
+  // With a partition (writer) or partitions (reader), the endpoint matches only endpoints that
+  // share one: DDS decides it once, at discovery, so a node is never sent another axis's
+  // setpoints (partition_of_axis).
+  eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* topic, Delivery delivery,
+                                             const std::string& partition = "");
+  eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::Topic* topic, Delivery delivery,
+                                             const std::vector<std::string>& partitions = {});
 
   // Deletes a reader made by reader() that is no longer needed (its samples, its matches).
   void remove_reader(eprosima::fastdds::dds::DataReader* reader);
@@ -95,10 +100,12 @@ class DdsContext {
 
  private:
   class MatchTracker;
+  eprosima::fastdds::dds::Publisher* publisher_for(const std::string& partition);
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+  std::map<std::string, eprosima::fastdds::dds::Publisher*> partition_publishers_;
   std::string transport_description_;
   std::string identity_;
   bool xml_loaded_ = false;
@@ -116,6 +123,9 @@ eprosima::fastdds::dds::Topic* DdsContext::topic(const std::string& name) {
   topics_[name] = created;
   return created;
 }
+
+// The DDS partition of one axis's setpoints.
+inline std::string partition_of_axis(const std::string& axis) { return "netmc.axis." + axis; }
 
 // Writes one sample; throws std::runtime_error naming the topic if DDS refuses it (out of
 // resources, not enabled, ...): no write's result is ignored.

@@ -72,7 +72,7 @@ void JobPublisher::command(std::size_t axis, std::uint32_t iteration, std::uint6
   setpoint.cycle(cycle);
   setpoint.command(command);
   setpoint.send_time_s(send_time_s);
-  dds::write_checked(channels_.setpoints, &setpoint);
+  dds::write_checked(channels_.setpoints.at(axis), &setpoint);
 }
 
 void JobPublisher::end_job() noexcept {

@@ -26,7 +26,7 @@ struct JobChannels {
   std::string server;                                       // this server's identity
   std::vector<std::string> axes;                            // axis names, in the job's order
   eprosima::fastdds::dds::DataWriter* control = nullptr;    // JobControl
-  eprosima::fastdds::dds::DataWriter* setpoints = nullptr;  // Setpoint of the job's clock
+  std::vector<eprosima::fastdds::dds::DataWriter*> setpoints;  // per axis: Setpoint, the job's clock
   dds::SampleReader<netmc::dds::Feedback>* feedback = nullptr;
   dds::SampleReader<netmc::dds::AxisEvent>* events = nullptr;
   eprosima::fastdds::dds::DataWriter* iteration_logs = nullptr;

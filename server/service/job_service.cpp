@@ -41,10 +41,6 @@ JobService::JobService(dds::DdsContext& context, NodeDirectory& nodes, ClockTrac
       options_(options),
       control_(context.writer(context.topic<netmc::dds::JobControlPubSubType>(dds::kJobControlTopic),
                               dds::Delivery::control)),
-      realtime_setpoints_(context.writer(
-          context.topic<netmc::dds::SetpointPubSubType>(dds::kRealtimeSetpointTopic), dds::Delivery::stream)),
-      lockstep_setpoints_(context.writer(
-          context.topic<netmc::dds::SetpointPubSubType>(dds::kLockstepSetpointTopic), dds::Delivery::exchange)),
       realtime_feedback_(context.reader(
           context.topic<netmc::dds::FeedbackPubSubType>(dds::kRealtimeFeedbackTopic), dds::Delivery::stream)),
       lockstep_feedback_(context.reader(
@@ -172,8 +168,21 @@ void JobService::work() {
   }
 }
 
-std::vector<NodeRecord> JobService::find_nodes(const Job& job, eprosima::fastdds::dds::DataWriter* setpoints) {
+eprosima::fastdds::dds::DataWriter* JobService::setpoint_writer(bool realtime, const std::string& axis) {
+  // One writer per axis and clock, in the axis's partition; made on first use and kept (at most
+  // one per axis a node ever hosted: bounded by the lab's axes).
+  auto& writer = setpoint_writers_[{realtime, axis}];
+  if (!writer) {
+    writer = context_.writer(context_.topic<netmc::dds::SetpointPubSubType>(
+                                 realtime ? dds::kRealtimeSetpointTopic : dds::kLockstepSetpointTopic),
+                             realtime ? dds::Delivery::stream : dds::Delivery::exchange, dds::partition_of_axis(axis));
+  }
+  return writer;
+}
+
+std::vector<NodeRecord> JobService::find_nodes(const Job& job) {
   const std::string clock = job.spec.clock().empty() ? "lockstep" : job.spec.clock();
+  const bool realtime = clock == "realtime";
   std::vector<NodeRecord> found;
   std::vector<std::string> participants;
   for (const auto& axis : job::axis_names(job.spec)) {
@@ -201,14 +210,17 @@ std::vector<NodeRecord> JobService::find_nodes(const Job& job, eprosima::fastdds
     }
     found.push_back(*node);
     participants.push_back(node->status.participant());
+    if (!context_.wait_for_participants(setpoint_writer(realtime, axis), {participants.back()},
+                                        options_.discovery_timeout)) {
+      throw JobFailure("node " + node->status.node() + " was discovered but does not read the setpoints of axis " +
+                       axis + " within " + std::to_string(options_.discovery_timeout.count()) + " ms");
+    }
   }
   // The very participants that host the axes must be matched both ways (our control and
-  // setpoints to their readers, their feedback and events to ours): an endpoint of a node that
+  // setpoints, above, to their readers, their feedback and events to ours): an endpoint of a node that
   // died, which DDS still counts for its lease, does not do.
-  const bool realtime = clock == "realtime";
   const auto* feedback = realtime ? realtime_feedback_.get() : lockstep_feedback_.get();
   if (!context_.wait_for_participants(control_, participants, options_.discovery_timeout) ||
-      !context_.wait_for_participants(setpoints, participants, options_.discovery_timeout) ||
       !context_.wait_for_participants(feedback, participants, options_.discovery_timeout) ||
       !context_.wait_for_participants(events_.get(), participants, options_.discovery_timeout)) {
     throw JobFailure("the axis nodes were discovered but their readers did not match within " +
@@ -225,7 +237,7 @@ void JobService::run(Job& job) {
   try {
     if (job.cancel.load()) throw JobFailure("cancelled before it started");
     const bool realtime = job.spec.clock() == "realtime";
-    const std::vector<NodeRecord> nodes = find_nodes(job, realtime ? realtime_setpoints_ : lockstep_setpoints_);
+    const std::vector<NodeRecord> nodes = find_nodes(job);
     const auto on_iteration = [&](const sim::IterationRecord& record) {
       const auto metrics = job::to_proto(record.metrics);
       *done.mutable_result()->add_iterations() = metrics;
@@ -246,8 +258,8 @@ void JobService::run(Job& job) {
     channels.control = control_;
     channels.events = &events_;
     channels.iteration_logs = iteration_logs_;
+    for (const auto& axis : channels.axes) channels.setpoints.push_back(setpoint_writer(realtime, axis));
     if (realtime) {
-      channels.setpoints = realtime_setpoints_;
       channels.feedback = &realtime_feedback_;
       // Before the first iteration every node's clock must have been measured a few times.
       const auto deadline = std::chrono::steady_clock::now() + options_.discovery_timeout;
@@ -269,7 +281,6 @@ void JobService::run(Job& job) {
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
       runner.run(on_iteration, job.cancel);
     } else {
-      channels.setpoints = lockstep_setpoints_;
       channels.feedback = &lockstep_feedback_;
       LockstepDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout);
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());

@@ -53,15 +53,15 @@ class JobService {
   void reply(Job& job, netmc::v1::Response response);
 
   // The nodes hosting the job's axes, checked against its clock and plant, matched by DDS.
-  std::vector<NodeRecord> find_nodes(const Job& job, eprosima::fastdds::dds::DataWriter* setpoints);
+  std::vector<NodeRecord> find_nodes(const Job& job);
+  eprosima::fastdds::dds::DataWriter* setpoint_writer(bool realtime, const std::string& axis);
 
   dds::DdsContext& context_;
   NodeDirectory& nodes_;
   ClockTracker& clocks_;
   JobServiceOptions options_;
   eprosima::fastdds::dds::DataWriter* control_;
-  eprosima::fastdds::dds::DataWriter* realtime_setpoints_;
-  eprosima::fastdds::dds::DataWriter* lockstep_setpoints_;
+  std::map<std::pair<bool, std::string>, eprosima::fastdds::dds::DataWriter*> setpoint_writers_;  // worker thread
   dds::SampleReader<netmc::dds::Feedback> realtime_feedback_;
   dds::SampleReader<netmc::dds::Feedback> lockstep_feedback_;
   dds::SampleReader<netmc::dds::AxisEvent> events_;

@@ -6,7 +6,6 @@
 # socket may be bound to anything but loopback (ss).
 # Usage: many_nodes.sh BUILD_DIR
 set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 build=$(cd "$1" && pwd)
 source "$(dirname "$0")/lib.sh"
 source "$(dirname "$0")/lab.sh"

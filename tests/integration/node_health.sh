@@ -5,7 +5,6 @@
 # job after the restart works.
 # Usage: node_health.sh BUILD_DIR lockstep|realtime
 set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 build=$(cd "$1" && pwd)
 clock=${2:-lockstep}
 source "$(dirname "$0")/lib.sh"
