@@ -123,6 +123,20 @@ void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::stri
   dds::write_checked(status_writer_, &status);
 }
 
+void AxisNodeLink::refuse(const netmc::dds::JobControl& control, netmc::dds::AxisEventKind kind,
+                          const std::string& why) {
+  std::cerr << "netmc-axis " << config_.node << ": job " << control.job_id() << " of server "
+            << control.server() << " refused: " << why << std::endl;
+  netmc::dds::AxisEvent event;
+  event.axis(control.axis());
+  event.server(control.server());
+  event.job_id(control.job_id());
+  event.iteration(control.iteration());
+  event.kind(kind);
+  event.detail(why.substr(0, 255));
+  publish_event(event);
+}
+
 std::string AxisNodeLink::admit(const netmc::dds::JobControl& control) {
   std::lock_guard lock(mutex_);
   const auto now = std::chrono::steady_clock::now();

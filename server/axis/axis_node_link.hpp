@@ -67,6 +67,8 @@ class AxisNodeLink {
   void publish(netmc::dds::Feedback& feedback);
   void publish_event(netmc::dds::AxisEvent& event);
   void publish_status(netmc::dds::NodeHealth health, const std::string& detail);
+  // Tells the server of `control` (and this node's log) why its job is not taken.
+  void refuse(const netmc::dds::JobControl& control, netmc::dds::AxisEventKind kind, const std::string& why);
 
   // The server that holds this node. A BEGIN of a new job is taken only from the holder or when
   // no live server holds the node; every other message only from the holder of that job.

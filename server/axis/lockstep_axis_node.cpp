@@ -33,26 +33,12 @@ void LockstepAxisNode::serve(const std::atomic<bool>& stop) {
   }
 }
 
-void LockstepAxisNode::refuse(const netmc::dds::JobControl& control, netmc::dds::AxisEventKind kind,
-                              const std::string& why) {
-  std::cerr << "netmc-axis " << link_.config().node << ": job " << control.job_id() << " of server "
-            << control.server() << " refused: " << why << std::endl;
-  netmc::dds::AxisEvent event;
-  event.axis(control.axis());
-  event.server(control.server());
-  event.job_id(control.job_id());
-  event.iteration(control.iteration());
-  event.kind(kind);
-  event.detail(why.substr(0, 255));
-  link_.publish_event(event);
-}
-
 void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
   const auto owned = axes_.find(control.axis());
   if (owned == axes_.end()) return;  // another node's axis
   if (const std::string why = link_.admit(control); !why.empty()) {
     if (control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty()) {
-      refuse(control, netmc::dds::AXIS_REFUSED, why);
+      link_.refuse(control, netmc::dds::AXIS_REFUSED, why);
     }
     return;
   }
@@ -64,7 +50,7 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
       // A job this node cannot run must not take the node down: say so and stay ready.
       axis = JobAxis{};
       link_.release(control.server(), control.job_id());
-      refuse(control, netmc::dds::AXIS_FAULT, error.what());
+      link_.refuse(control, netmc::dds::AXIS_FAULT, error.what());
       link_.publish_status(netmc::dds::NODE_FAULT, "job " + std::to_string(control.job_id()) + ": " + error.what());
       return;
     }

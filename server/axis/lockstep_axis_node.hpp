@@ -20,8 +20,6 @@ class LockstepAxisNode {
  private:
   void handle(const netmc::dds::JobControl& control);
   void handle(const netmc::dds::Setpoint& setpoint);
-  void refuse(const netmc::dds::JobControl& control, netmc::dds::AxisEventKind kind,
-              const std::string& why);
 
   AxisNodeLink link_;
   std::map<std::string, JobAxis> axes_;

@@ -52,20 +52,6 @@ void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
   dds_thread.join();
 }
 
-void RealtimeAxisNode::refuse(const netmc::dds::JobControl& control, netmc::dds::AxisEventKind kind,
-                              const std::string& why) {
-  std::cerr << "netmc-axis " << link_.config().node << ": job " << control.job_id() << " of server "
-            << control.server() << " refused: " << why << std::endl;
-  netmc::dds::AxisEvent event;
-  event.axis(control.axis());
-  event.server(control.server());
-  event.job_id(control.job_id());
-  event.iteration(control.iteration());
-  event.kind(kind);
-  event.detail(why.substr(0, 255));
-  link_.publish_event(event);
-}
-
 void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
   const auto owned = axes_.find(control.axis());
   if (owned == axes_.end()) return;
@@ -73,7 +59,7 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
   const std::string& name = owned->first;
   if (const std::string why = link_.admit(control); !why.empty()) {
     if (control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty()) {
-      refuse(control, netmc::dds::AXIS_REFUSED, why);
+      link_.refuse(control, netmc::dds::AXIS_REFUSED, why);
     }
     return;
   }
@@ -86,7 +72,7 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
         } catch (const std::exception& error) {
           axis.endpoint.reset();
           link_.release(control.server(), control.job_id());
-          refuse(control, netmc::dds::AXIS_FAULT, error.what());
+          link_.refuse(control, netmc::dds::AXIS_FAULT, error.what());
           return;
         }
         axis.server = control.server();

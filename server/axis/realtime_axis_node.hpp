@@ -47,8 +47,6 @@ class RealtimeAxisNode {
   void tick(const std::string& axis_name);
   void schedule(OwnedAxis& axis, const std::string& axis_name);
   void end_iteration(const std::string& axis_name, OwnedAxis& axis, std::uint64_t commands_sent);
-  void refuse(const netmc::dds::JobControl& control, netmc::dds::AxisEventKind kind,
-              const std::string& why);
 
   boost::asio::io_context io_;
   AxisNodeLink link_;
