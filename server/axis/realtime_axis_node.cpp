@@ -1,5 +1,6 @@
 #include "server/axis/realtime_axis_node.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <thread>
@@ -89,21 +90,38 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
       axis.last_setpoint_s = 0.0;
       axis.holding = false;
       axis.running = true;
+      axis.ending = false;
       axis.samples = 0;
       axis.commands_received = 0;
       axis.server_send_times.clear();
       schedule(axis, name);
       return;
     }
-    case netmc::dds::CONTROL_END_ITERATION:
+    case netmc::dds::CONTROL_END_ITERATION: {
       if (!axis.endpoint || axis.job_id != control.job_id() || axis.iteration != control.iteration()) return;
-      end_iteration(name, axis, control.cycle());
+      // Sampling stops now; the report waits two periods (at least 10 ms), since the last
+      // setpoints travel best-effort on another topic and may arrive after this message: they
+      // are counted as received, not as missing.
+      if (axis.timer) axis.timer->cancel();
+      axis.running = false;
+      axis.ending = true;
+      const auto grace = std::max(std::chrono::duration<double>(2.0 * axis.sample_period_s),
+                                  std::chrono::duration<double>(0.010));
+      axis.timer->expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(grace));
+      axis.timer->async_wait([this, name, iteration = axis.iteration, sent = control.cycle()](
+                                 const boost::system::error_code& error) {
+        OwnedAxis& ending = axes_.at(name);
+        if (error || !ending.endpoint || !ending.ending || ending.iteration != iteration) return;
+        end_iteration(name, ending, sent);
+      });
       return;
+    }
     case netmc::dds::CONTROL_END_JOB:
       if (axis.job_id == control.job_id()) {
         if (axis.timer) axis.timer->cancel();
         axis.endpoint.reset();
         axis.running = false;
+        axis.ending = false;
         axis.holding = false;
         link_.release(control.server(), control.job_id());
       }
@@ -115,8 +133,12 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   const auto owned = axes_.find(setpoint.axis());
   if (owned == axes_.end()) return;
   OwnedAxis& axis = owned->second;
-  if (!axis.endpoint || !axis.running || axis.job_id != setpoint.job_id() ||
+  if (!axis.endpoint || !(axis.running || axis.ending) || axis.job_id != setpoint.job_id() ||
       axis.iteration != setpoint.iteration() || !link_.from_holder(setpoint.server(), setpoint.job_id())) {
+    return;
+  }
+  if (axis.ending) {  // arrived after the iteration's end: late, but not lost
+    ++axis.commands_received;
     return;
   }
   // Nothing but a finite command of this job's cycles reaches the plant.
@@ -183,8 +205,7 @@ void RealtimeAxisNode::tick(const std::string& axis_name) {
 
 void RealtimeAxisNode::end_iteration(const std::string& axis_name, OwnedAxis& axis,
                                      std::uint64_t commands_sent) {
-  if (axis.timer) axis.timer->cancel();
-  axis.running = false;
+  axis.ending = false;
   netmc::dds::AxisEvent event;
   event.axis(axis_name);
   event.server(axis.server);

@@ -34,6 +34,7 @@ class RealtimeAxisNode {
     double last_setpoint_s = 0.0;    // job time of the last setpoint received
     bool holding = false;
     bool running = false;            // sampling (between BEGIN and END_ITERATION)
+    bool ending = false;             // END_ITERATION came; the report waits for late setpoints
     std::uint64_t samples = 0;
     std::uint64_t commands_received = 0;
     // Server departure time of each setpoint in flight: tau_ca then includes the real DDS

@@ -1,7 +1,6 @@
 #include "server/service/job_service.hpp"
 
 #include <iostream>
-#include <set>
 
 #include "dds_typesPubSubTypes.h"
 #include "server/dds/topics.hpp"
@@ -268,11 +267,11 @@ void JobService::run(Job& job) {
           std::this_thread::sleep_for(std::chrono::milliseconds(20));
         }
       }
-      const ClockOffsets offsets = [this, &nodes](std::size_t axis) {
+      const ClockOffsets offsets = [this, &nodes, &channels](std::size_t axis) {
         const auto estimate = clocks_.estimate(nodes.at(axis).status.node());
         if (!estimate) {
-          throw JobFailure("node " + nodes.at(axis).status.node() +
-                           " answers no clock probe: its offset to the server is unknown");
+          throw JobFailure("axis " + channels.axes.at(axis) + " (node " + nodes.at(axis).status.node() +
+                           ") answers no clock probe: node stopped or unreachable");
         }
         return *estimate;
       };

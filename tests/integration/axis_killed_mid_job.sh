@@ -17,6 +17,11 @@ start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --axis-ti
   --axis-silence 50 --domain "$domain" --transport udp
 server_pid=${pids[-1]}
 port=$(server_port 127.0.0.1)
+# Both nodes serving (each listens 1.5 s for a rival first), so the kill lands mid-job.
+for _ in $(seq 100); do
+  grep -q serving "$tmp/x.log" && grep -q serving "$tmp/y.log" && break
+  sleep 0.1
+done
 
 ( sleep 2; kill -9 "$y_pid"; date +%s%3N >"$tmp/killed_at" ) &
 set +e

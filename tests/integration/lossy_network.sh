@@ -10,14 +10,22 @@
 # receiver: 1-(1-P)^2, 36 % at P = 20 %.) A multicast datagram (discovery) is lost for all its
 # receivers at once.
 #
-#  Part A, lockstep (reliable DDS, 5 ms heartbeats repair a loss): at 0, 1, 5 and 20 % loss,
-#    `netmc run --controller adrc+ilccc --iterations 3` must finish and write JSON byte-identical to
-#    `netmc sim` with the same flags. 1 % may cost at most 3 s over the lossless run; 5 % and 20 %
-#    must finish within 4 times the lossless time + 20 s (wall times are printed).
-#  Part B, realtime (best-effort setpoints and feedback; a lost one is counted, not repaired): the
-#    axes restarted with --clock realtime; at 1 % and 20 % `--iterations 2` must finish, and at 20 %
-#    report lost_setpoints + lost_feedback > 0; at 5 % `--iterations 5` must still cut e_sum by >= 80 %
-#    (ADRC+ILCCC converges). Lost counts, deadline misses and delays are printed per loss level.
+#  Part A, lockstep (reliable DDS with millisecond heartbeats: a loss is repaired, not counted): at
+#    0, 1, 5 and 20 % loss, `netmc run --controller adrc+ilccc --iterations 3` must finish and write
+#    JSON byte-identical to `netmc sim` with the same flags. 1 % may cost at most 3 s over the
+#    lossless run; 5 % and 20 % must finish within 4 times the lossless time + 20 s (times printed).
+#  Part B, realtime (best-effort setpoints and feedback; a lost one is counted, not repaired), the
+#    axes restarted with --clock realtime, paper 001's study (8 s iterations at h = 5 ms):
+#     1 %, 5 iterations: e_sum cut >= 80 % from iteration 1 to 5 (as realtime_ilc.sh without loss).
+#     5 %, 5 iterations: ADRC+ILCCC still converges: cut >= 50 %. Not 80 %: netmc sim itself, with
+#       5 % Bernoulli loss of setpoints and feedback (--loss/--uplink-loss bernoulli:p=0.05), cuts
+#       63-74 % (30 seeds, median 69 %; printed for seed 1): a lost feedback sample makes the server
+#       compute with the previous one, and the ILC learns from that cycle too. The model reaches
+#       80 % only up to about 2-3 % loss. Realtime runs here scattered 59-72 %.
+#    20 %, 2 iterations: finishes; lost_setpoints + lost_feedback > 0.
+#    The counted losses must match the link's loss: lost feedback and lost setpoints each within
+#    [P/3, 2P + 1 %] of the 2 x 1600 samples of an iteration. Lost counts, deadline misses and
+#    delays are printed per loss level.
 # Needs root, iproute2 and nftables; exits 77 (skipped) otherwise.
 # Set NETMC_KEEP_LOGS=DIR to keep all logs. Usage: lossy_network.sh BUILD_DIR
 set -euo pipefail
@@ -26,6 +34,8 @@ build=$(cd "$1" && pwd)
 here=$(dirname "$0")
 source "$here/lib.sh"
 source "$here/lab.sh"
+# On exit, after the lab cleanup (the logs are complete then): keep them if asked.
+# shellcheck disable=SC2016 # expanded when the cleanup evals it
 extra_cleanup+=('[ -z "${NETMC_KEEP_LOGS:-}" ] || { mkdir -p "$NETMC_KEEP_LOGS" && cp -r "$tmp"/. "$NETMC_KEEP_LOGS"/; }')
 server_bin=$build/server/service/netmc-server
 axis_bin=$build/server/axis/netmc-axis
@@ -35,13 +45,19 @@ lab_need_nft
 t_start=$EPOCHREALTIME
 hosts=(srv ax ay)
 
+# Processes started with lab_start, for fail(): which are still running, which ended and how
+# (143/137: ended by SIGTERM/SIGKILL; if the test did not stop it, something else did).
+started=()
+start_bg() { started+=("$1"); lab_start "$@"; }
 fail() {
   echo "FAIL: $*"
-  local log
-  for log in "$tmp"/*.log; do
-    [ -e "$log" ] || continue
-    echo "--- $(basename "$log") (last 10 lines)"
-    tail -n 10 "$log"
+  local log st
+  for log in "${started[@]}"; do
+    st=0
+    lab_wait "$log" 2 || st=$?   # 2 s: a process may be shutting down
+    if [ "$st" -eq 124 ]; then echo "--- $log: running"; else echo "--- $log: ended, exit status $st"; fi
+    echo "--- $log.log (last 10 lines)"
+    tail -n 10 "$tmp/$log.log"
   done
   exit 1
 }
@@ -67,7 +83,9 @@ sent_frames() {
 dropped_datagrams() { local h total=0; for h in "${hosts[@]}"; do total=$((total + $(lab_loss_dropped "$h"))); done; echo "$total"; }
 
 # run_loss P ITERATIONS LOGNAME [run flags...]: sets P % loss, runs the job from srv (timeout
-# 150 s), prints its wall time and the datagrams nft dropped. Sets $rc, $wall.
+# 150 s; in the background, so that SIGTERM/SIGINT stop the test at once), prints its wall time
+# and the datagrams nft dropped. Sets $rc (124: timed out), $wall; the client's output is in
+# $tmp/LOGNAME.log.
 run_loss() {
   local pct=$1 iterations=$2 name=$3 t0 f0
   shift 3
@@ -75,22 +93,25 @@ run_loss() {
   f0=$(sent_frames)
   t0=$EPOCHREALTIME
   rc=0
-  lab_exec srv -- timeout 150 "$netmc" run --server "$S:$port" --controller adrc+ilccc \
-    --iterations "$iterations" --json "$tmp/$name.json" "$@" >"$tmp/$name.out" 2>"$tmp/$name.err" || rc=$?
+  lab_start "$name" srv -- "$netmc" run --server "$S:$port" --controller adrc+ilccc \
+    --iterations "$iterations" --json "$tmp/$name.json" "$@"
+  lab_wait "$name" 150 || rc=$?
   wall=$(seconds_since "$t0")
+  [ "$rc" -ne 124 ] || lab_stop "$name"
   local dropped frames
   dropped=$(dropped_datagrams)
   frames=$(( $(sent_frames) - f0 ))
   set_loss 0
   echo "  loss $pct %: exit $rc after $wall s; nft dropped $dropped of $frames frames sent" \
-    "($(awk -v d="$dropped" -v f="$frames" 'BEGIN { printf "%.1f", f ? 100 * d / f : 0 }') %)"
+    "($(awk -v d="$dropped" -v f="$frames" 'BEGIN { printf "%.1f", f ? 100 * d / f : 0 }') %);" \
+    "load average $(cut -d' ' -f1-3 /proc/loadavg)"
 }
 
 # start_nodes CLOCK TAG: one axis node per host, waits until the server lists both.
 start_nodes() {
-  lab_start "x$2" ax -- "$axis_bin" --node "$2-x" --axes x --clock "$1" --domain "$domain" \
+  start_bg "x$2" ax -- "$axis_bin" --node "$2-x" --axes x --clock "$1" --domain "$domain" \
     --transport udp --interface "$(lab_addr ax)"
-  lab_start "y$2" ay -- "$axis_bin" --node "$2-y" --axes y --clock "$1" --domain "$domain" \
+  start_bg "y$2" ay -- "$axis_bin" --node "$2-y" --axes y --clock "$1" --domain "$domain" \
     --transport udp --interface "$(lab_addr ay)"
   local n=0
   for _ in $(seq 100); do
@@ -102,7 +123,7 @@ start_nodes() {
   fail "the server lists $n of 2 $1 nodes after 20 s"
 }
 
-lab_start server srv -- "$server_bin" --listen "$S:0" --domain "$domain" --transport udp --interface "$S"
+start_bg server srv -- "$server_bin" --listen "$S:0" --domain "$domain" --transport udp --interface "$S"
 lab_wait_log server 'listening on' 10 || fail "netmc-server did not start"
 port=$(sed -n "s/.*listening on $S:\([0-9]*\).*/\1/p" "$tmp/server.log")
 
@@ -115,7 +136,7 @@ declare -A walls=()
 for pct in 0 1 5 20; do
   run_loss "$pct" 3 "lockstep$pct"
   walls[$pct]=$wall
-  [ "$rc" -eq 0 ] || fail "lockstep job at $pct % loss: exit $rc: $(tail -n 3 "$tmp/lockstep$pct.err")"
+  [ "$rc" -eq 0 ] || fail "lockstep job at $pct % loss: exit $rc: $(tail -n 3 "$tmp/lockstep$pct.log")"
   if cmp -s "$tmp/lockstep$pct.json" "$tmp/sim.json"; then
     echo "    identical JSON to netmc sim"
   else
@@ -125,6 +146,12 @@ for pct in 0 1 5 20; do
 done
 lab_stop xls
 lab_stop yls
+# Until the server has dropped them: a new node claiming x while ls-x is listed would be refused
+# ("axis x is held by node ls-x") and only accepted on its next announcement.
+for _ in $(seq 50); do
+  lab_exec srv -- "$netmc" nodes --server "$S:$port" | grep -qE '^ls-[xy] ' || break
+  sleep 0.2
+done
 echo "  wall times: 0 % ${walls[0]} s, 1 % ${walls[1]} s, 5 % ${walls[5]} s, 20 % ${walls[20]} s"
 awk -v w0="${walls[0]}" -v w1="${walls[1]}" -v w5="${walls[5]}" -v w20="${walls[20]}" 'BEGIN {
   lim1 = w0 + 3; lim = 4 * w0 + 20
@@ -136,48 +163,64 @@ awk -v w0="${walls[0]}" -v w1="${walls[1]}" -v w5="${walls[5]}" -v w20="${walls[
 start_nodes realtime rt
 echo "Part B: realtime adrc+ilccc (best-effort control streams, h = 5 ms, 8 s iterations)"
 # rt_stats FILE: per iteration "e_sum tau_mean tau_p99 tau_max tau_sc_mean tau_ca_mean lost_feedback
-# lost_setpoints deadline_misses" (the JSON has one field a line).
+# lost_setpoints deadline_misses diverged_at" (the JSON has one field a line; diverged_at -1: stable).
 rt_stats() {
   awk -F': ' '
     { v = $2; gsub(/,/, "", v) }
     /^ *"iteration":/ { if (n) print line(); n++; delete f }
-    /^ *"(e_sum_m|tau_mean_s|tau_p99_s|tau_max_s|tau_sc_mean_s|tau_ca_mean_s|lost_feedback|lost_setpoints|deadline_misses)":/ {
+    /^ *"(e_sum_m|tau_mean_s|tau_p99_s|tau_max_s|tau_sc_mean_s|tau_ca_mean_s|lost_feedback|lost_setpoints|deadline_misses|diverged|diverged_at_s)":/ {
       k = $1; gsub(/[" ]/, "", k); f[k] = v
     }
     function line() {
       return f["e_sum_m"] + 0 " " f["tau_mean_s"] + 0 " " f["tau_p99_s"] + 0 " " f["tau_max_s"] + 0 " " \
         f["tau_sc_mean_s"] + 0 " " f["tau_ca_mean_s"] + 0 " " f["lost_feedback"] + 0 " " \
-        f["lost_setpoints"] + 0 " " f["deadline_misses"] + 0
+        f["lost_setpoints"] + 0 " " f["deadline_misses"] + 0 " " (f["diverged"] == "true" ? f["diverged_at_s"] + 0 : -1)
     }
     END { if (n) print line() }' "$1"
 }
 # 2 axes x 1600 samples (8 s at 5 ms) per iteration: the share of them lost.
 print_rt() {
   awk '{
-    fb += $7; sp += $8
     printf "    iteration %d: e_sum %7.3f mm  tau mean %.3f p99 %.3f max %.3f ms (sc %.3f, ca %.3f)" \
       "  lost feedback %d, setpoints %d (%.1f %%, %.1f %% of 3200)  deadline misses %d\n",
       NR, $1 * 1e3, $2 * 1e3, $3 * 1e3, $4 * 1e3, $5 * 1e3, $6 * 1e3, $7, $8, 100 * $7 / 3200, 100 * $8 / 3200, $9
   }' "$1"
 }
-for pct in 1 20 5; do
-  iterations=$([ "$pct" = 5 ] && echo 5 || echo 2)
+# ecut FILE: e_sum cut from the first to the last iteration, in %.
+ecut() { awk 'NR == 1 { first = $1 } { last = $1 } END { printf "%.1f", 100 * (1 - last / first) }' "$1"; }
+"$netmc" sim --quiet --controller adrc+ilccc --iterations 5 --loss bernoulli:p=0.05 \
+  --uplink-loss bernoulli:p=0.05 --json "$tmp/sim_loss5.json" >/dev/null
+rt_stats "$tmp/sim_loss5.json" >"$tmp/sim_loss5.txt"
+sim_cut5=$(ecut "$tmp/sim_loss5.txt")
+for pct in 1 5 20; do
+  iterations=$([ "$pct" = 20 ] && echo 2 || echo 5)
   run_loss "$pct" "$iterations" "realtime$pct" --clock realtime
-  [ "$rc" -eq 0 ] || fail "realtime job at $pct % loss: exit $rc: $(tail -n 3 "$tmp/realtime$pct.err")"
+  [ "$rc" -eq 0 ] || fail "realtime job at $pct % loss: exit $rc: $(tail -n 3 "$tmp/realtime$pct.log")"
   rt_stats "$tmp/realtime$pct.json" >"$tmp/realtime$pct.txt"
   print_rt "$tmp/realtime$pct.txt"
+  diverged=$(awk '$10 >= 0 { printf "iteration %d diverged at t = %.3f s (tau max %.1f ms)", NR, $10, $4 * 1e3; exit }' \
+    "$tmp/realtime$pct.txt")
+  [ -z "$diverged" ] || fail "realtime job at $pct % loss: $diverged; load average $(cut -d' ' -f1-3 /proc/loadavg)"
   [ "$(wc -l <"$tmp/realtime$pct.txt")" -eq "$iterations" ] || fail "expected $iterations iterations at $pct %"
   lost=$(awk '{ n += $7 + $8 } END { print n + 0 }' "$tmp/realtime$pct.txt")
   echo "    lost feedback + setpoints: $lost"
   if [ "$pct" = 20 ] && [ "$lost" -eq 0 ]; then fail "no lost samples counted at 20 % loss"; fi
-  if [ "$pct" = 5 ]; then
-    awk 'NR == 1 { first = $1 } { last = $1 } END {
-      cut = 1 - last / first
-      printf "    e_sum %.3f mm (iteration 1, ADRC) -> %.3f mm (iteration %d): cut %.1f %% (need >= 80 %%)\n",
-        first * 1e3, last * 1e3, NR, cut * 100
-      exit (cut >= 0.80) ? 0 : 1
-    }' "$tmp/realtime5.txt" || fail "ADRC+ILCCC did not converge at 5 % loss"
-  fi
+  awk -v p="$pct" '{
+    lo = 3200 * p / 300; hi = 3200 * (2 * p + 1) / 100
+    if ($7 < lo || $7 > hi || $8 < lo || $8 > hi) {
+      printf "    iteration %d: lost feedback %d, setpoints %d: not within [%.0f, %.0f]\n", NR, $7, $8, lo, hi; bad = 1
+    }
+  } END { exit bad }' "$tmp/realtime$pct.txt" || fail "lost counts do not match $pct % loss on the links"
+  c=$(ecut "$tmp/realtime$pct.txt")
+  first_last=$(awk 'NR == 1 { f = $1 } { l = $1 } END { printf "e_sum %.3f mm (iteration 1, ADRC) -> %.3f mm (iteration %d)", f * 1e3, l * 1e3, NR }' \
+    "$tmp/realtime$pct.txt")
+  case $pct in
+    1) echo "    $first_last: cut $c % (need >= 80 %)"
+       awk -v c="$c" 'BEGIN { exit !(c >= 80) }' || fail "ADRC+ILCCC did not cut e_sum by 80 % at 1 % loss" ;;
+    5) echo "    $first_last: cut $c % (need >= 50 %; netmc sim with 5 % loss both ways: $sim_cut5 %)"
+       awk -v c="$c" 'BEGIN { exit !(c >= 50) }' || fail "ADRC+ILCCC did not converge at 5 % loss" ;;
+    *) echo "    $first_last: cut $c % (not checked)" ;;
+  esac
 done
 lab_stop xrt
 lab_stop yrt

@@ -73,9 +73,6 @@ for _ in $(seq 100); do
 done
 "$netmc" nodes --server "127.0.0.1:$portA" | grep -E '^n[0-3] ' || true
 set +e
-"$netmc" run --server "127.0.0.1:$portB" --quiet --axes p0.x,p0.y --controller adrc --iterations 1 \
-  >/dev/null 2>"$tmp/refused.err"
-refused_rc=$?
 wait "$run_a"; rc_a=$?
 wait "$run_b"; rc_b=$?
 set -e
@@ -86,6 +83,21 @@ echo "jobs at the same time: server A on p0 exit $rc_a, server B on p1 exit $rc_
 cmp -s "$tmp/a.json" "$tmp/sim.json" && cmp -s "$tmp/b.json" "$tmp/sim.json" ||
   { echo "FAIL: concurrent jobs differ from netmc sim"; exit 1; }
 echo "both equal netmc sim byte for byte"
+
+# While server A holds p2, server B may not take it: refused, with the holder named.
+"$netmc" run --server "127.0.0.1:$portA" --quiet --axes p2.x,p2.y "${study[@]}" >/dev/null &
+run_a=$!
+for _ in $(seq 200); do
+  "$netmc" nodes --server "127.0.0.1:$portB" | grep -qE "^n4 .*held by $serverA" && break
+  sleep 0.05
+done
+set +e
+"$netmc" run --server "127.0.0.1:$portB" --quiet --axes p2.x,p2.y --controller adrc --iterations 1 \
+  >/dev/null 2>"$tmp/refused.err"
+refused_rc=$?
+wait "$run_a"; rc_a=$?
+set -e
 echo "server B on axes held by server A: exit $refused_rc: $(tail -n 1 "$tmp/refused.err")"
 [ "$refused_rc" -ne 0 ] && grep -q "held by server $serverA" "$tmp/refused.err" ||
   { echo "FAIL: the job on held axes was not refused with the holder named"; exit 1; }
+[ "$rc_a" -eq 0 ] || { echo "FAIL: server A's job on p2 failed"; exit 1; }

@@ -26,6 +26,8 @@ build=$(cd "$1" && pwd)
 here=$(dirname "$0")
 source "$here/lib.sh"
 source "$here/lab.sh"
+# On exit, after the lab cleanup (the logs are complete then): keep them if asked.
+# shellcheck disable=SC2016 # expanded when the cleanup evals it
 extra_cleanup+=('[ -z "${NETMC_KEEP_LOGS:-}" ] || { mkdir -p "$NETMC_KEEP_LOGS" && cp -r "$tmp"/. "$NETMC_KEEP_LOGS"/; }')
 server_bin=$build/server/service/netmc-server
 axis_bin=$build/server/axis/netmc-axis
@@ -34,13 +36,19 @@ lab_init
 lab_need_timens
 t_start=$EPOCHREALTIME
 
+# Processes started with lab_start, for fail(): which are still running, which ended and how
+# (143/137: ended by SIGTERM/SIGKILL; if the test did not stop it, something else did).
+started=()
+start_bg() { started+=("$1"); lab_start "$@"; }
 fail() {
   echo "FAIL: $*"
-  local log
-  for log in "$tmp"/*.log; do
-    [ -e "$log" ] || continue
-    echo "--- $(basename "$log") (last 10 lines)"
-    tail -n 10 "$log"
+  local log st
+  for log in "${started[@]}"; do
+    st=0
+    lab_wait "$log" 2 || st=$?   # 2 s: a process may be shutting down
+    if [ "$st" -eq 124 ]; then echo "--- $log: running"; else echo "--- $log: ended, exit status $st"; fi
+    echo "--- $log.log (last 10 lines)"
+    tail -n 10 "$tmp/$log.log"
   done
   exit 1
 }
@@ -53,19 +61,19 @@ S=$(lab_addr srv)
 start_cluster() {
   local tag=$1 smono=$2 xmono=$3 ymono=$4 t=()
   t=(); [ "$smono" = - ] || t=(--monotonic "$smono")
-  lab_start "server$tag" srv "${t[@]}" -- "$server_bin" --listen "$S:0" --domain "$domain" \
+  start_bg "server$tag" srv "${t[@]}" -- "$server_bin" --listen "$S:0" --domain "$domain" \
     --transport udp --interface "$S"
   t=(); [ "$xmono" = - ] || t=(--monotonic "$xmono")
-  lab_start "x$tag" ax "${t[@]}" -- "$axis_bin" --node host-x --axes x --clock realtime \
+  start_bg "x$tag" ax "${t[@]}" -- "$axis_bin" --node host-x --axes x --clock realtime \
     --domain "$domain" --transport udp --interface "$(lab_addr ax)"
   t=(); [ "$ymono" = - ] || t=(--monotonic "$ymono")
-  lab_start "y$tag" ay "${t[@]}" -- "$axis_bin" --node host-y --axes y --clock realtime \
+  start_bg "y$tag" ay "${t[@]}" -- "$axis_bin" --node host-y --axes y --clock realtime \
     --domain "$domain" --transport udp --interface "$(lab_addr ay)"
   lab_wait_log "server$tag" 'listening on' 10 || fail "netmc-server$tag did not start"
   port=$(sed -n "s/.*listening on $S:\([0-9]*\).*/\1/p" "$tmp/server$tag.log")
 }
 
-# nodes_json FILE: `netmc nodes --json` from the client host; prints "node measured offset rtt"
+# nodes_table FILE: `netmc nodes --json` from the client host; prints "node measured offset rtt"
 # per node (the reply is protobuf JSON, one field a line).
 nodes_table() {
   lab_exec cl -- "$netmc" nodes --server "$S:$port" --json >"$1"
@@ -113,29 +121,42 @@ check_offsets() {
   ' "$tmp/offsets$tag.txt"
 }
 
+# check_stable FILE: fails if an iteration diverged (a starved machine: see the delays).
+check_stable() {
+  local diverged
+  diverged=$(awk '$12 >= 0 { printf "iteration %d diverged at t = %.3f s (tau max %.1f ms)", NR, $12, $5 * 1e3; exit }' "$1")
+  [ -z "$diverged" ] || fail "realtime job: $diverged; load average $(cut -d' ' -f1-3 /proc/loadavg)"
+}
+
 # run_job TAG ITERATIONS: the realtime paper-001 job from the client host, JSON in $tmp/runTAG.json.
+# In the background (lab_start), so that SIGTERM/SIGINT stop the test at once, not after the job.
 run_job() {
   local tag=$1 rc=0 t0=$EPOCHREALTIME
-  lab_exec cl -- timeout 120 "$netmc" run --server "$S:$port" --clock realtime --controller adrc+ilccc \
-    --iterations "$2" --curve --json "$tmp/run$tag.json" >"$tmp/run$tag.out" 2>"$tmp/run$tag.err" || rc=$?
-  grep -E 'iteration [0-9]+/' "$tmp/run$tag.err" | sed 's/^ */  /' || true
-  echo "  (job took $(awk -v a="$t0" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.1f", b - a }') s, exit $rc)"
-  [ "$rc" -eq 0 ] || fail "realtime job ($tag) exit $rc: $(tail -n 3 "$tmp/run$tag.err")"
+  lab_start "run$tag" cl -- "$netmc" run --server "$S:$port" --clock realtime --controller adrc+ilccc \
+    --iterations "$2" --curve --json "$tmp/run$tag.json"
+  lab_wait "run$tag" 120 || rc=$?
+  [ "$rc" -ne 124 ] || lab_stop "run$tag"
+  grep -E 'iteration [0-9]+/' "$tmp/run$tag.log" | sed 's/^ */  /' || true
+  echo "  (job took $(awk -v a="$t0" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.1f", b - a }') s, exit $rc;" \
+    "load average $(cut -d' ' -f1-3 /proc/loadavg))"
+  [ "$rc" -eq 0 ] || fail "realtime job ($tag) exit $rc (124: still running after 120 s): $(tail -n 3 "$tmp/run$tag.log")"
 }
 
 # per_iteration FILE: one line per iteration: e_sum tau_mean tau_p50 tau_p99 tau_max tau_sc_mean
-# tau_ca_mean lost_feedback lost_setpoints deadline_misses clock_uncertainty (seconds, metres).
+# tau_ca_mean lost_feedback lost_setpoints deadline_misses clock_uncertainty diverged_at (seconds,
+# metres; diverged_at -1: stable).
 per_iteration() {
   awk -F': ' '
     { v = $2; gsub(/,/, "", v) }
     /^ *"iteration":/ { if (n) print line(); n++; delete f }
-    /^ *"(e_sum_m|tau_mean_s|tau_p50_s|tau_p99_s|tau_max_s|tau_sc_mean_s|tau_ca_mean_s|lost_feedback|lost_setpoints|deadline_misses|clock_uncertainty_s)":/ {
+    /^ *"(e_sum_m|tau_mean_s|tau_p50_s|tau_p99_s|tau_max_s|tau_sc_mean_s|tau_ca_mean_s|lost_feedback|lost_setpoints|deadline_misses|clock_uncertainty_s|diverged|diverged_at_s)":/ {
       k = $1; gsub(/[" ]/, "", k); f[k] = v
     }
     function line() {
       return f["e_sum_m"] + 0 " " f["tau_mean_s"] + 0 " " f["tau_p50_s"] + 0 " " f["tau_p99_s"] + 0 " " \
         f["tau_max_s"] + 0 " " f["tau_sc_mean_s"] + 0 " " f["tau_ca_mean_s"] + 0 " " f["lost_feedback"] + 0 " " \
-        f["lost_setpoints"] + 0 " " f["deadline_misses"] + 0 " " f["clock_uncertainty_s"] + 0
+        f["lost_setpoints"] + 0 " " f["deadline_misses"] + 0 " " f["clock_uncertainty_s"] + 0 " " \
+        (f["diverged"] == "true" ? f["diverged_at_s"] + 0 : -1)
     }
     END { if (n) print line() }' "$1"
 }
@@ -162,6 +183,7 @@ echo "(b) realtime adrc+ilccc, 5 iterations, clocks 43 h behind / 24 h ahead of 
 run_job "" 5
 per_iteration "$tmp/run.json" >"$tmp/stats.txt"
 print_stats "$tmp/stats.txt"
+check_stable "$tmp/stats.txt"
 [ "$(wc -l <"$tmp/stats.txt")" -eq 5 ] || fail "expected 5 iterations in the JSON"
 awk '
   NR == 1 { first = $1 } { last = $1 }
@@ -191,6 +213,7 @@ check_offsets _base 0 0 || fail "measured clock offsets on one clock"
 run_job _base 2
 per_iteration "$tmp/run_base.json" >"$tmp/stats_base.txt"
 print_stats "$tmp/stats_base.txt"
+check_stable "$tmp/stats_base.txt"
 [ "$(wc -l <"$tmp/stats_base.txt")" -eq 2 ] || fail "expected 2 iterations in the baseline JSON"
 for p in server_base x_base y_base; do lab_stop "$p"; done
 
