@@ -4,13 +4,29 @@
 tmp=$(mktemp -d)
 pids=()
 extra_cleanup=()
+# Stops every process started here: SIGTERM, up to 5 s to go, then SIGKILL; a process that had
+# to be killed, or survives, fails the test (exit 1) even if its checks passed.
 cleanup() {
+  local rc=0 left pid
   for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
+  for _ in $(seq 50); do
+    left=""
+    for pid in "${pids[@]}"; do kill -0 "$pid" 2>/dev/null && left+=" $pid"; done
+    [ -n "$left" ] || break
+    sleep 0.1
+  done
+  if [ -n "$left" ]; then
+    echo "cleanup: still running 5 s after SIGTERM, killed:$left" >&2
+    # shellcheck disable=SC2086
+    kill -KILL $left 2>/dev/null || true
+    rc=1
+  fi
   wait 2>/dev/null || true
   for step in "${extra_cleanup[@]}"; do eval "$step" || true; done
   rm -rf "$tmp"
+  return "$rc"
 }
-trap cleanup EXIT
+trap 'status=$?; cleanup || status=1; exit "$status"' EXIT
 
 # A DDS domain of its own for each run, so concurrent runs do not meet.
 domain=$(( 100 + RANDOM % 100 ))
