@@ -56,6 +56,8 @@
 #                             processes survive SIGKILL). CMD's status: lab_status LOGNAME.
 #   lab_status LOGNAME        prints the leader's exit status once lab_wait/lab_stop reaped it
 #                             (143 = ended by SIGTERM, 137 = SIGKILL).
+#   lab_fail MESSAGE          FAIL: MESSAGE, each started process's state and log tail; exit 1.
+#   lab_keep_logs             copy $tmp to $NETMC_KEEP_LOGS (if set) when the test ends.
 #   lab_exec HOST [--monotonic SECONDS] -- CMD...
 #                             runs CMD in the foreground in HOST's namespace; returns its status.
 #   lab_cleanup               (runs automatically on exit, before lib.sh's cleanup; may also be
@@ -381,6 +383,28 @@ lab_wait_log() {
   echo "lab_wait_log: no line matching /$re/ in $log.log after $limit s:" >&2
   cat "$tmp/$log.log" >&2 2>/dev/null || true
   return 1
+}
+
+# lab_fail MESSAGE: prints FAIL: MESSAGE, then every lab_start'ed process's state (running, or
+# its exit status: 143/137 = ended by SIGTERM/SIGKILL) and the last 10 lines of its log; exit 1.
+lab_fail() {
+  echo "FAIL: $*"
+  local log st
+  for log in "${lab__order[@]}"; do
+    st=0
+    lab_wait "$log" 2 || st=$?   # 2 s: a process may be shutting down
+    if [ "$st" -eq 124 ]; then echo "--- $log: running"; else echo "--- $log: ended, exit status $st"; fi
+    echo "--- $log.log (last 10 lines)"
+    tail -n 10 "$tmp/$log.log"
+  done
+  exit 1
+}
+
+# lab_keep_logs: on exit, after the cleanup (the logs are complete then), copies $tmp to
+# $NETMC_KEEP_LOGS if that is set.
+lab_keep_logs() {
+  # shellcheck disable=SC2016 # expanded when the cleanup evals it
+  extra_cleanup+=('[ -z "${NETMC_KEEP_LOGS:-}" ] || { mkdir -p "$NETMC_KEEP_LOGS" && cp -r "$tmp"/. "$NETMC_KEEP_LOGS"/; }')
 }
 
 lab_stop() {

@@ -34,9 +34,7 @@ build=$(cd "$1" && pwd)
 here=$(dirname "$0")
 source "$here/lib.sh"
 source "$here/lab.sh"
-# On exit, after the lab cleanup (the logs are complete then): keep them if asked.
-# shellcheck disable=SC2016 # expanded when the cleanup evals it
-extra_cleanup+=('[ -z "${NETMC_KEEP_LOGS:-}" ] || { mkdir -p "$NETMC_KEEP_LOGS" && cp -r "$tmp"/. "$NETMC_KEEP_LOGS"/; }')
+lab_keep_logs
 server_bin=$build/server/service/netmc-server
 axis_bin=$build/server/axis/netmc-axis
 netmc=$build/client/netmc
@@ -45,22 +43,6 @@ lab_need_nft
 t_start=$EPOCHREALTIME
 hosts=(srv ax ay)
 
-# Processes started with lab_start, for fail(): which are still running, which ended and how
-# (143/137: ended by SIGTERM/SIGKILL; if the test did not stop it, something else did).
-started=()
-start_bg() { started+=("$1"); lab_start "$@"; }
-fail() {
-  echo "FAIL: $*"
-  local log st
-  for log in "${started[@]}"; do
-    st=0
-    lab_wait "$log" 2 || st=$?   # 2 s: a process may be shutting down
-    if [ "$st" -eq 124 ]; then echo "--- $log: running"; else echo "--- $log: ended, exit status $st"; fi
-    echo "--- $log.log (last 10 lines)"
-    tail -n 10 "$tmp/$log.log"
-  done
-  exit 1
-}
 seconds_since() { awk -v a="$1" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.1f", b - a }'; }
 
 for h in "${hosts[@]}"; do lab_host "$h"; done
@@ -109,9 +91,9 @@ run_loss() {
 
 # start_nodes CLOCK TAG: one axis node per host, waits until the server lists both.
 start_nodes() {
-  start_bg "x$2" ax -- "$axis_bin" --node "$2-x" --axes x --clock "$1" --domain "$domain" \
+  lab_start "x$2" ax -- "$axis_bin" --node "$2-x" --axes x --clock "$1" --domain "$domain" \
     --transport udp --interface "$(lab_addr ax)"
-  start_bg "y$2" ay -- "$axis_bin" --node "$2-y" --axes y --clock "$1" --domain "$domain" \
+  lab_start "y$2" ay -- "$axis_bin" --node "$2-y" --axes y --clock "$1" --domain "$domain" \
     --transport udp --interface "$(lab_addr ay)"
   local n=0
   for _ in $(seq 100); do
@@ -120,11 +102,11 @@ start_nodes() {
     sleep 0.2
   done
   lab_exec srv -- "$netmc" nodes --server "$S:$port"
-  fail "the server lists $n of 2 $1 nodes after 20 s"
+  lab_fail "the server lists $n of 2 $1 nodes after 20 s"
 }
 
-start_bg server srv -- "$server_bin" --listen "$S:0" --domain "$domain" --transport udp --interface "$S"
-lab_wait_log server 'listening on' 10 || fail "netmc-server did not start"
+lab_start server srv -- "$server_bin" --listen "$S:0" --domain "$domain" --transport udp --interface "$S"
+lab_wait_log server 'listening on' 10 || lab_fail "netmc-server did not start"
 port=$(sed -n "s/.*listening on $S:\([0-9]*\).*/\1/p" "$tmp/server.log")
 
 # --- Part A: lockstep ---------------------------------------------------------------------------
@@ -136,12 +118,12 @@ declare -A walls=()
 for pct in 0 1 5 20; do
   run_loss "$pct" 3 "lockstep$pct"
   walls[$pct]=$wall
-  [ "$rc" -eq 0 ] || fail "lockstep job at $pct % loss: exit $rc: $(tail -n 3 "$tmp/lockstep$pct.log")"
+  [ "$rc" -eq 0 ] || lab_fail "lockstep job at $pct % loss: exit $rc: $(tail -n 3 "$tmp/lockstep$pct.log")"
   if cmp -s "$tmp/lockstep$pct.json" "$tmp/sim.json"; then
     echo "    identical JSON to netmc sim"
   else
     diff "$tmp/sim.json" "$tmp/lockstep$pct.json" | head -20
-    fail "lockstep at $pct % loss differs from netmc sim"
+    lab_fail "lockstep at $pct % loss differs from netmc sim"
   fi
 done
 lab_stop xls
@@ -157,7 +139,7 @@ awk -v w0="${walls[0]}" -v w1="${walls[1]}" -v w5="${walls[5]}" -v w20="${walls[
   lim1 = w0 + 3; lim = 4 * w0 + 20
   printf "  1 %%: %+.1f s over lossless (limit +3 s); 5 %%, 20 %%: limit %.1f s (4 x lossless + 20 s)\n", w1 - w0, lim
   exit (w1 <= lim1 && w5 <= lim && w20 <= lim) ? 0 : 1
-}' || fail "lockstep under loss too slow"
+}' || lab_fail "lockstep under loss too slow"
 
 # --- Part B: realtime ---------------------------------------------------------------------------
 start_nodes realtime rt
@@ -195,30 +177,30 @@ sim_cut5=$(ecut "$tmp/sim_loss5.txt")
 for pct in 1 5 20; do
   iterations=$([ "$pct" = 20 ] && echo 2 || echo 5)
   run_loss "$pct" "$iterations" "realtime$pct" --clock realtime
-  [ "$rc" -eq 0 ] || fail "realtime job at $pct % loss: exit $rc: $(tail -n 3 "$tmp/realtime$pct.log")"
+  [ "$rc" -eq 0 ] || lab_fail "realtime job at $pct % loss: exit $rc: $(tail -n 3 "$tmp/realtime$pct.log")"
   rt_stats "$tmp/realtime$pct.json" >"$tmp/realtime$pct.txt"
   print_rt "$tmp/realtime$pct.txt"
   diverged=$(awk '$10 >= 0 { printf "iteration %d diverged at t = %.3f s (tau max %.1f ms)", NR, $10, $4 * 1e3; exit }' \
     "$tmp/realtime$pct.txt")
-  [ -z "$diverged" ] || fail "realtime job at $pct % loss: $diverged; load average $(cut -d' ' -f1-3 /proc/loadavg)"
-  [ "$(wc -l <"$tmp/realtime$pct.txt")" -eq "$iterations" ] || fail "expected $iterations iterations at $pct %"
+  [ -z "$diverged" ] || lab_fail "realtime job at $pct % loss: $diverged; load average $(cut -d' ' -f1-3 /proc/loadavg)"
+  [ "$(wc -l <"$tmp/realtime$pct.txt")" -eq "$iterations" ] || lab_fail "expected $iterations iterations at $pct %"
   lost=$(awk '{ n += $7 + $8 } END { print n + 0 }' "$tmp/realtime$pct.txt")
   echo "    lost feedback + setpoints: $lost"
-  if [ "$pct" = 20 ] && [ "$lost" -eq 0 ]; then fail "no lost samples counted at 20 % loss"; fi
+  if [ "$pct" = 20 ] && [ "$lost" -eq 0 ]; then lab_fail "no lost samples counted at 20 % loss"; fi
   awk -v p="$pct" '{
     lo = 3200 * p / 300; hi = 3200 * (2 * p + 1) / 100
     if ($7 < lo || $7 > hi || $8 < lo || $8 > hi) {
       printf "    iteration %d: lost feedback %d, setpoints %d: not within [%.0f, %.0f]\n", NR, $7, $8, lo, hi; bad = 1
     }
-  } END { exit bad }' "$tmp/realtime$pct.txt" || fail "lost counts do not match $pct % loss on the links"
+  } END { exit bad }' "$tmp/realtime$pct.txt" || lab_fail "lost counts do not match $pct % loss on the links"
   c=$(ecut "$tmp/realtime$pct.txt")
   first_last=$(awk 'NR == 1 { f = $1 } { l = $1 } END { printf "e_sum %.3f mm (iteration 1, ADRC) -> %.3f mm (iteration %d)", f * 1e3, l * 1e3, NR }' \
     "$tmp/realtime$pct.txt")
   case $pct in
     1) echo "    $first_last: cut $c % (need >= 80 %)"
-       awk -v c="$c" 'BEGIN { exit !(c >= 80) }' || fail "ADRC+ILCCC did not cut e_sum by 80 % at 1 % loss" ;;
+       awk -v c="$c" 'BEGIN { exit !(c >= 80) }' || lab_fail "ADRC+ILCCC did not cut e_sum by 80 % at 1 % loss" ;;
     5) echo "    $first_last: cut $c % (need >= 50 %; netmc sim with 5 % loss both ways: $sim_cut5 %)"
-       awk -v c="$c" 'BEGIN { exit !(c >= 50) }' || fail "ADRC+ILCCC did not converge at 5 % loss" ;;
+       awk -v c="$c" 'BEGIN { exit !(c >= 50) }' || lab_fail "ADRC+ILCCC did not converge at 5 % loss" ;;
     *) echo "    $first_last: cut $c % (not checked)" ;;
   esac
 done

@@ -26,9 +26,7 @@ build=$(cd "$1" && pwd)
 here=$(dirname "$0")
 source "$here/lib.sh"
 source "$here/lab.sh"
-# On exit, after the lab cleanup (the logs are complete then): keep them if asked.
-# shellcheck disable=SC2016 # expanded when the cleanup evals it
-extra_cleanup+=('[ -z "${NETMC_KEEP_LOGS:-}" ] || { mkdir -p "$NETMC_KEEP_LOGS" && cp -r "$tmp"/. "$NETMC_KEEP_LOGS"/; }')
+lab_keep_logs
 server_bin=$build/server/service/netmc-server
 axis_bin=$build/server/axis/netmc-axis
 netmc=$build/client/netmc
@@ -36,22 +34,6 @@ lab_init
 lab_need_timens
 t_start=$EPOCHREALTIME
 
-# Processes started with lab_start, for fail(): which are still running, which ended and how
-# (143/137: ended by SIGTERM/SIGKILL; if the test did not stop it, something else did).
-started=()
-start_bg() { started+=("$1"); lab_start "$@"; }
-fail() {
-  echo "FAIL: $*"
-  local log st
-  for log in "${started[@]}"; do
-    st=0
-    lab_wait "$log" 2 || st=$?   # 2 s: a process may be shutting down
-    if [ "$st" -eq 124 ]; then echo "--- $log: running"; else echo "--- $log: ended, exit status $st"; fi
-    echo "--- $log.log (last 10 lines)"
-    tail -n 10 "$tmp/$log.log"
-  done
-  exit 1
-}
 
 for h in srv ax ay cl; do lab_host "$h"; done
 S=$(lab_addr srv)
@@ -61,15 +43,15 @@ S=$(lab_addr srv)
 start_cluster() {
   local tag=$1 smono=$2 xmono=$3 ymono=$4 t=()
   t=(); [ "$smono" = - ] || t=(--monotonic "$smono")
-  start_bg "server$tag" srv "${t[@]}" -- "$server_bin" --listen "$S:0" --domain "$domain" \
+  lab_start "server$tag" srv "${t[@]}" -- "$server_bin" --listen "$S:0" --domain "$domain" \
     --transport udp --interface "$S"
   t=(); [ "$xmono" = - ] || t=(--monotonic "$xmono")
-  start_bg "x$tag" ax "${t[@]}" -- "$axis_bin" --node host-x --axes x --clock realtime \
+  lab_start "x$tag" ax "${t[@]}" -- "$axis_bin" --node host-x --axes x --clock realtime \
     --domain "$domain" --transport udp --interface "$(lab_addr ax)"
   t=(); [ "$ymono" = - ] || t=(--monotonic "$ymono")
-  start_bg "y$tag" ay "${t[@]}" -- "$axis_bin" --node host-y --axes y --clock realtime \
+  lab_start "y$tag" ay "${t[@]}" -- "$axis_bin" --node host-y --axes y --clock realtime \
     --domain "$domain" --transport udp --interface "$(lab_addr ay)"
-  lab_wait_log "server$tag" 'listening on' 10 || fail "netmc-server$tag did not start"
+  lab_wait_log "server$tag" 'listening on' 10 || lab_fail "netmc-server$tag did not start"
   port=$(sed -n "s/.*listening on $S:\([0-9]*\).*/\1/p" "$tmp/server$tag.log")
 }
 
@@ -95,7 +77,7 @@ wait_measured() {
     [ "$n" -eq 2 ] && break
     sleep 0.2
   done
-  [ "$n" -eq 2 ] || fail "after 20 s, $n of 2 nodes have a measured clock ($(cat "$tmp/nodes$1.json"))"
+  [ "$n" -eq 2 ] || lab_fail "after 20 s, $n of 2 nodes have a measured clock ($(cat "$tmp/nodes$1.json"))"
   sleep 3.3
 }
 
@@ -125,7 +107,7 @@ check_offsets() {
 check_stable() {
   local diverged
   diverged=$(awk '$12 >= 0 { printf "iteration %d diverged at t = %.3f s (tau max %.1f ms)", NR, $12, $5 * 1e3; exit }' "$1")
-  [ -z "$diverged" ] || fail "realtime job: $diverged; load average $(cut -d' ' -f1-3 /proc/loadavg)"
+  [ -z "$diverged" ] || lab_fail "realtime job: $diverged; load average $(cut -d' ' -f1-3 /proc/loadavg)"
 }
 
 # run_job TAG ITERATIONS: the realtime paper-001 job from the client host, JSON in $tmp/runTAG.json.
@@ -139,7 +121,7 @@ run_job() {
   grep -E 'iteration [0-9]+/' "$tmp/run$tag.log" | sed 's/^ */  /' || true
   echo "  (job took $(awk -v a="$t0" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.1f", b - a }') s, exit $rc;" \
     "load average $(cut -d' ' -f1-3 /proc/loadavg))"
-  [ "$rc" -eq 0 ] || fail "realtime job ($tag) exit $rc (124: still running after 120 s): $(tail -n 3 "$tmp/run$tag.log")"
+  [ "$rc" -eq 0 ] || lab_fail "realtime job ($tag) exit $rc (124: still running after 120 s): $(tail -n 3 "$tmp/run$tag.log")"
 }
 
 # per_iteration FILE: one line per iteration: e_sum tau_mean tau_p50 tau_p99 tau_max tau_sc_mean
@@ -176,7 +158,7 @@ echo "clocks: server CLOCK_MONOTONIC +${srv_mono} s, axis x +${x_mono} s, axis y
 start_cluster "" "$srv_mono" "$x_mono" "$y_mono"
 wait_measured ""
 echo "(a) clock offsets (node minus server) measured by the server, seen from host cl:"
-check_offsets "" $((x_mono - srv_mono)) $((y_mono - srv_mono)) || fail "measured clock offsets"
+check_offsets "" $((x_mono - srv_mono)) $((y_mono - srv_mono)) || lab_fail "measured clock offsets"
 
 # --- (b) realtime ILC across the unrelated clocks ----------------------------------------------
 echo "(b) realtime adrc+ilccc, 5 iterations, clocks 43 h behind / 24 h ahead of the server:"
@@ -184,7 +166,7 @@ run_job "" 5
 per_iteration "$tmp/run.json" >"$tmp/stats.txt"
 print_stats "$tmp/stats.txt"
 check_stable "$tmp/stats.txt"
-[ "$(wc -l <"$tmp/stats.txt")" -eq 5 ] || fail "expected 5 iterations in the JSON"
+[ "$(wc -l <"$tmp/stats.txt")" -eq 5 ] || lab_fail "expected 5 iterations in the JSON"
 awk '
   NR == 1 { first = $1 } { last = $1 }
   END {
@@ -192,7 +174,7 @@ awk '
     printf "  e_sum %.3f mm (iteration 1, ADRC) -> %.3f mm (iteration 5): cut %.1f %% (need >= 80 %%)\n",
       first * 1e3, last * 1e3, cut * 100
     exit (cut >= 0.80) ? 0 : 1
-  }' "$tmp/stats.txt" || fail "ADRC+ILCCC did not cut e_sum by 80 % across unrelated clocks"
+  }' "$tmp/stats.txt" || lab_fail "ADRC+ILCCC did not cut e_sum by 80 % across unrelated clocks"
 # The split into tau_sc (sensor -> controller) and tau_ca (controller -> actuator) subtracts
 # timestamps of different clocks: a wrong offset shows up as hours, or as negative delays.
 awk '{
@@ -200,7 +182,7 @@ awk '{
   if (u <= 0 || u > 5e-3) { printf "  iteration %d: clock_uncertainty_s %g not in (0, 5 ms]\n", NR, u; bad = 1 }
   if ($6 < -u || $6 > 20e-3 + u) { printf "  iteration %d: tau_sc_mean %g s implausible\n", NR, $6; bad = 1 }
   if ($7 < 0.3e-3 - u || $7 > 20e-3 + u) { printf "  iteration %d: tau_ca_mean %g s implausible\n", NR, $7; bad = 1 }
-} END { exit bad }' "$tmp/stats.txt" || fail "delay split across clocks"
+} END { exit bad }' "$tmp/stats.txt" || lab_fail "delay split across clocks"
 echo "  tau_sc and tau_ca plausible in every iteration (within +-clock_uncertainty of 0..20 ms," \
   "tau_ca >= 0.3 ms emulated)"
 
@@ -209,12 +191,12 @@ for p in server x y; do lab_stop "$p"; done
 echo "(c) baseline: the same hosts, one clock (no time namespaces)"
 start_cluster _base - - -
 wait_measured _base
-check_offsets _base 0 0 || fail "measured clock offsets on one clock"
+check_offsets _base 0 0 || lab_fail "measured clock offsets on one clock"
 run_job _base 2
 per_iteration "$tmp/run_base.json" >"$tmp/stats_base.txt"
 print_stats "$tmp/stats_base.txt"
 check_stable "$tmp/stats_base.txt"
-[ "$(wc -l <"$tmp/stats_base.txt")" -eq 2 ] || fail "expected 2 iterations in the baseline JSON"
+[ "$(wc -l <"$tmp/stats_base.txt")" -eq 2 ] || lab_fail "expected 2 iterations in the baseline JSON"
 for p in server_base x_base y_base; do lab_stop "$p"; done
 
 # Realtime delays vary from run to run with scheduling and the load on the machine (2 cores: the
@@ -236,6 +218,6 @@ awk -v f="$tmp/stats.txt" -v g="$tmp/stats_base.txt" 'BEGIN {
   printf "tau_p99:  unrelated clocks %.3f ms, one clock %.3f ms: difference %+.3f ms, ratio %.2f" \
     " (limit 2 ms or x2): %s\n", p1 * 1e3, p2 * 1e3, dp * 1e3, ratio, okp ? "ok" : "WRONG"
   exit (okm && okp) ? 0 : 1
-}' || fail "delays differ between unrelated clocks and one clock"
+}' || lab_fail "delays differ between unrelated clocks and one clock"
 
 echo "separate clocks passed in $(awk -v a="$t_start" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.0f", b - a }') s"
