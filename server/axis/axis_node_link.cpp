@@ -25,17 +25,11 @@ std::vector<std::string> axis_partitions(const std::vector<std::string>& axes) {
 AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
     : context_(context),
       config_(std::move(config)),
-      feedback_writer_(context.writer(
-          context.topic<netmc::dds::FeedbackPubSubType>(realtime(config_) ? dds::kRealtimeFeedbackTopic
-                                                                          : dds::kLockstepFeedbackTopic),
-          realtime(config_) ? dds::Delivery::stream : dds::Delivery::exchange)),
-      event_writer_(context.writer(context.topic<netmc::dds::AxisEventPubSubType>(dds::kAxisEventTopic),
-                                   dds::Delivery::control)),
       status_writer_(context.writer(
           context.topic<netmc::dds::NodeStatusPubSubType>(dds::kNodeStatusTopic), dds::Delivery::status)),
       reply_writer_(context.writer(context.topic<netmc::dds::ClockReplyPubSubType>(dds::kClockReplyTopic),
                                    dds::Delivery::stream)),
-      // Setpoints in the partitions of this node's axes only: at hundreds of cycles a second, a
+      // Setpoints in the partitions of this node's axes only: at thousands of cycles a second, a
       // node that were sent every axis's would spend its CPU dropping them. (Fast DDS 2.9's
       // content filters cost more: a dynamic type is built per sample.) Job control is rare and
       // goes to every node, which drops the others' on the DDS thread.
@@ -46,8 +40,18 @@ AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
                                                                           : dds::kLockstepSetpointTopic),
           realtime(config_) ? dds::Delivery::stream : dds::Delivery::exchange, axis_partitions(config_.axes))),
       probes_(context.reader(context.topic<netmc::dds::ClockProbePubSubType>(dds::kClockProbeTopic),
-                             dds::Delivery::stream)),
-      probe_thread_([this] { answer_probes(); }) {}
+                             dds::Delivery::stream)) {
+  auto* feedback = context.topic<netmc::dds::FeedbackPubSubType>(
+      realtime(config_) ? dds::kRealtimeFeedbackTopic : dds::kLockstepFeedbackTopic);
+  auto* events = context.topic<netmc::dds::AxisEventPubSubType>(dds::kAxisEventTopic);
+  for (const auto& axis : config_.axes) {
+    const std::string partition = dds::partition_of_axis(axis);
+    writers_[axis] = {context.writer(feedback, realtime(config_) ? dds::Delivery::stream : dds::Delivery::exchange,
+                                     partition),
+                      context.writer(events, dds::Delivery::control, partition)};
+  }
+  probe_thread_ = std::thread([this] { answer_probes(); });
+}
 
 AxisNodeLink::~AxisNodeLink() {
   stop_.store(true);
@@ -98,9 +102,23 @@ bool AxisNodeLink::hosts(const std::string& axis) const {
   return std::find(config_.axes.begin(), config_.axes.end(), axis) != config_.axes.end();
 }
 
-void AxisNodeLink::publish(netmc::dds::Feedback& feedback) { dds::write_checked(feedback_writer_, &feedback); }
+const AxisNodeLink::AxisWriters& AxisNodeLink::writers_of(const std::string& axis) const {
+  const auto it = writers_.find(axis);
+  if (it == writers_.end()) throw std::invalid_argument("axis " + axis + " is not hosted by this node");
+  return it->second;
+}
 
-void AxisNodeLink::publish_event(netmc::dds::AxisEvent& event) { dds::write_checked(event_writer_, &event); }
+void AxisNodeLink::publish(netmc::dds::Feedback& feedback) {
+  dds::write_checked(writers_of(feedback.axis()).feedback, &feedback);
+}
+
+void AxisNodeLink::publish_event(netmc::dds::AxisEvent& event) {
+  dds::write_checked(writers_of(event.axis()).events, &event);
+}
+
+bool AxisNodeLink::held(const Hold& hold, std::chrono::steady_clock::time_point now) const {
+  return !hold.server.empty() && now - hold.last_contact < config_.hold_lease;
+}
 
 void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::string& detail) {
   netmc::dds::NodeStatus status;
@@ -114,10 +132,15 @@ void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::stri
   status.participant(context_.identity());
   {
     std::lock_guard lock(mutex_);
-    const bool held = !held_by_.empty() &&
-                      std::chrono::steady_clock::now() - last_contact_ < config_.hold_lease;
-    status.held_by(held ? held_by_ : "");
-    status.job_id(held ? held_job_ : 0);
+    const auto now = std::chrono::steady_clock::now();
+    for (const auto& [axis, hold] : holds_) {
+      if (!held(hold, now)) continue;
+      netmc::dds::AxisHold entry;
+      entry.axis(axis);
+      entry.server(hold.server);
+      entry.job_id(hold.job_id);
+      status.holds().push_back(entry);
+    }
   }
   status.status_period_s(std::chrono::duration<double>(kStatusPeriod).count());
   dds::write_checked(status_writer_, &status);
@@ -140,39 +163,40 @@ void AxisNodeLink::refuse(const netmc::dds::JobControl& control, netmc::dds::Axi
 std::string AxisNodeLink::admit(const netmc::dds::JobControl& control) {
   std::lock_guard lock(mutex_);
   const auto now = std::chrono::steady_clock::now();
-  const bool held = !held_by_.empty() && now - last_contact_ < config_.hold_lease;
+  Hold& hold = holds_[control.axis()];  // only hosted axes reach here
   const bool new_job = control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty();
-  if (held && held_by_ == control.server() && held_job_ == control.job_id()) {
-    last_contact_ = now;
+  if (held(hold, now) && hold.server == control.server() && hold.job_id == control.job_id()) {
+    hold.last_contact = now;
     return "";
   }
-  if (!new_job) return "not the job of the server that holds this node";
-  if (held && held_by_ != control.server()) {
-    return "axis " + control.axis() + " is held by server " + held_by_ + " (job " + std::to_string(held_job_) + ")";
+  if (!new_job) return "not the job of the server that holds this axis";
+  if (held(hold, now) && hold.server != control.server()) {
+    return "axis " + control.axis() + " is held by server " + hold.server + " (job " + std::to_string(hold.job_id) + ")";
   }
-  held_by_ = control.server();
-  held_job_ = control.job_id();
-  last_contact_ = now;
+  hold = {control.server(), control.job_id(), now};
   return "";
 }
 
-bool AxisNodeLink::from_holder(const std::string& server, std::uint64_t job_id) {
+bool AxisNodeLink::from_holder(const std::string& axis, const std::string& server, std::uint64_t job_id) {
   std::lock_guard lock(mutex_);
-  if (held_by_ != server || held_job_ != job_id) return false;
-  last_contact_ = std::chrono::steady_clock::now();
+  const auto it = holds_.find(axis);
+  if (it == holds_.end() || it->second.server != server || it->second.job_id != job_id) return false;
+  it->second.last_contact = std::chrono::steady_clock::now();
   return true;
 }
 
-void AxisNodeLink::release(const std::string& server, std::uint64_t job_id) {
+void AxisNodeLink::release(const std::string& axis, const std::string& server, std::uint64_t job_id) {
   std::lock_guard lock(mutex_);
-  if (held_by_ == server && held_job_ == job_id) held_by_.clear();
+  const auto it = holds_.find(axis);
+  if (it != holds_.end() && it->second.server == server && it->second.job_id == job_id) holds_.erase(it);
 }
 
 JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
   // The server must read this node's feedback before the first sample leaves: wait for its
   // reader by identity (a dead server's reader, still counted by DDS, does not do).
-  if (!context_.wait_for_participants(feedback_writer_, {begin.server()}, std::chrono::seconds(5)) ||
-      !context_.wait_for_participants(event_writer_, {begin.server()}, std::chrono::seconds(5))) {
+  const AxisWriters& writers = writers_of(begin.axis());
+  if (!context_.wait_for_participants(writers.feedback, {begin.server()}, std::chrono::seconds(5)) ||
+      !context_.wait_for_participants(writers.events, {begin.server()}, std::chrono::seconds(5))) {
     throw std::runtime_error("server " + begin.server() + " does not read this node's feedback");
   }
   netmc::v1::JobSpec spec;
@@ -184,20 +208,16 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
                                 config_.plant + "'");
   }
   const sim::ContourJob job = job::build_contour_job(spec);
-  job_axes_ = job::axis_names(spec);
-  const std::size_t index = job_axis_index(begin.axis());
+  const auto job_axes = job::axis_names(spec);
+  const auto it = std::find(job_axes.begin(), job_axes.end(), begin.axis());
+  if (it == job_axes.end()) throw std::invalid_argument("axis " + begin.axis() + " is not an axis of the job");
+  const auto index = static_cast<std::size_t>(it - job_axes.begin());
   JobAxis axis;
   axis.endpoint = std::make_unique<sim::AxisEndpoint>(job.axes.at(index)->clone(), job, index);
   axis.job_id = begin.job_id();
   axis.cycles = job.cycles();
   axis.sample_period_s = job.sample_period_s;
   return axis;
-}
-
-std::size_t AxisNodeLink::job_axis_index(const std::string& axis) const {
-  const auto it = std::find(job_axes_.begin(), job_axes_.end(), axis);
-  if (it == job_axes_.end()) throw std::invalid_argument("axis " + axis + " is not an axis of the job");
-  return static_cast<std::size_t>(it - job_axes_.begin());
 }
 
 void AxisNodeLink::answer_probes() {

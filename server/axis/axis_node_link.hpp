@@ -70,17 +70,16 @@ class AxisNodeLink {
   // Tells the server of `control` (and this node's log) why its job is not taken.
   void refuse(const netmc::dds::JobControl& control, netmc::dds::AxisEventKind kind, const std::string& why);
 
-  // The server that holds this node. A BEGIN of a new job is taken only from the holder or when
-  // no live server holds the node; every other message only from the holder of that job.
+  // The server that holds an axis (each axis on its own: the axes of one node may run different
+  // jobs, of different servers, at once). A BEGIN of a new job is taken only from the holder or
+  // when no live server holds the axis; every other message only from the holder of that job.
   // Returns an empty string if `control` may proceed, else why not.
   std::string admit(const netmc::dds::JobControl& control);
-  bool from_holder(const std::string& server, std::uint64_t job_id);
-  void release(const std::string& server, std::uint64_t job_id);
+  bool from_holder(const std::string& axis, const std::string& server, std::uint64_t job_id);
+  void release(const std::string& axis, const std::string& server, std::uint64_t job_id);
 
   // From the BEGIN_ITERATION of iteration 1: the job's axis, built from its spec.
   JobAxis start_job(const netmc::dds::JobControl& begin);
-  // Index of `axis` among the job's axes (x = 0, y = 1).
-  std::size_t job_axis_index(const std::string& axis) const;
 
   // The node's own clock (its --time-base).
   double now_s() const { return dds::time_base_now_s(config_.time_base); }
@@ -88,21 +87,31 @@ class AxisNodeLink {
  private:
   void answer_probes();
 
+  struct Hold {
+    std::string server;
+    std::uint64_t job_id = 0;
+    std::chrono::steady_clock::time_point last_contact{};
+  };
+  // Writers of one axis: feedback and events travel in the axis's partition, so that a job's
+  // readers on the server see its own axes only.
+  struct AxisWriters {
+    eprosima::fastdds::dds::DataWriter* feedback = nullptr;
+    eprosima::fastdds::dds::DataWriter* events = nullptr;
+  };
+  bool held(const Hold& hold, std::chrono::steady_clock::time_point now) const;
+  const AxisWriters& writers_of(const std::string& axis) const;
+
   dds::DdsContext& context_;
   AxisNodeConfig config_;
-  eprosima::fastdds::dds::DataWriter* feedback_writer_;
-  eprosima::fastdds::dds::DataWriter* event_writer_;
+  std::map<std::string, AxisWriters> writers_;
   eprosima::fastdds::dds::DataWriter* status_writer_;
   eprosima::fastdds::dds::DataWriter* reply_writer_;
   dds::SampleReader<netmc::dds::JobControl> control_;
   dds::SampleReader<netmc::dds::Setpoint> setpoints_;
   dds::SampleReader<netmc::dds::ClockProbe> probes_;
 
-  std::mutex mutex_;  // status and holder: the probe thread and the node's thread
-  std::string held_by_;
-  std::uint64_t held_job_ = 0;
-  std::chrono::steady_clock::time_point last_contact_{};
-  std::vector<std::string> job_axes_;
+  std::mutex mutex_;  // status and holds: the probe thread and the node's thread
+  std::map<std::string, Hold> holds_;  // by axis
 
   bool refused_ = false;
   std::atomic<bool> stop_{false};

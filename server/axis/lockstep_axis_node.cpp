@@ -49,7 +49,7 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
     } catch (const std::exception& error) {
       // A job this node cannot run must not take the node down: say so and stay ready.
       axis = JobAxis{};
-      link_.release(control.server(), control.job_id());
+      link_.release(control.axis(), control.server(), control.job_id());
       link_.refuse(control, netmc::dds::AXIS_FAULT, error.what());
       link_.publish_status(netmc::dds::NODE_FAULT, "job " + std::to_string(control.job_id()) + ": " + error.what());
       return;
@@ -73,7 +73,7 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
       break;
     case netmc::dds::CONTROL_END_JOB:
       axis.endpoint.reset();
-      link_.release(control.server(), control.job_id());
+      link_.release(control.axis(), control.server(), control.job_id());
       return;
   }
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
@@ -85,7 +85,7 @@ void LockstepAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   const auto owned = axes_.find(setpoint.axis());
   if (owned == axes_.end()) return;
   JobAxis& axis = owned->second;
-  if (!axis.endpoint || axis.job_id != setpoint.job_id() || !link_.from_holder(setpoint.server(), setpoint.job_id())) {
+  if (!axis.endpoint || axis.job_id != setpoint.job_id() || !link_.from_holder(setpoint.axis(), setpoint.server(), setpoint.job_id())) {
     return;
   }
   // Nothing but a finite command of this job's cycles reaches the plant.

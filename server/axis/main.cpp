@@ -12,6 +12,7 @@
 #include "server/axis/realtime_axis_node.hpp"
 #include "server/dds/dds_options_cli.hpp"
 #include "server/job/job_builder.hpp"
+#include "server/realtime/realtime_options_cli.hpp"
 
 namespace {
 
@@ -52,13 +53,15 @@ int main(int argc, char** argv) {
   app.add_option("--plant", config.plant, "Plant model: seed001, ballscrew, linmotor, stage004");
   int watchdog_ms = 50;
   app.add_option("--clock", clock,
-                 "lockstep (virtual time, deterministic) or realtime (wall clock, Asio timer)")
+                 "lockstep (virtual time, deterministic) or realtime (wall clock)")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
   app.add_option("--watchdog", watchdog_ms,
                  "Realtime: milliseconds without a setpoint before the axis holds (command 0)")
       ->check(CLI::Range(1, 60000));
   netmc::dds::add_time_base_option(app, config.time_base);
   netmc::dds::add_dds_options(app, dds);
+  netmc::realtime::RealtimeScheduling scheduling;
+  netmc::realtime::add_realtime_options(app, scheduling);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -73,13 +76,18 @@ int main(int argc, char** argv) {
     netmc::job::check_name(config.node, "--node");
     config.clock = clock;
     dds.name = config.node;
+    // Before the participant: its threads inherit the scheduling.
+    const auto scheduling_outcome = netmc::realtime::apply_process_scheduling(scheduling);
+    for (const auto& fallback : scheduling_outcome.fallbacks) {
+      std::cerr << "netmc-axis: warning: " << fallback << "; running without it" << std::endl;
+    }
     netmc::dds::DdsContext context(dds);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     std::cout << "netmc-axis " << config.node << ": axes " << axes << ", plant " << config.plant
               << ", clock " << clock << " (" << netmc::dds::time_base_name(config.time_base)
               << "), DDS domain " << dds.domain_id << " (" << context.describe_transport()
-              << "), participant " << context.identity() << std::endl;
+              << "), participant " << context.identity() << ", " << scheduling_outcome.describe() << std::endl;
     if (clock == "realtime") {
       netmc::axis::RealtimeAxisNode node(context, config, std::chrono::milliseconds(watchdog_ms));
       return serve(node);

@@ -1,11 +1,27 @@
 #include "server/axis/realtime_axis_node.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <thread>
+
+#include "server/realtime/realtime_scheduling.hpp"
 
 namespace netmc::axis {
+namespace {
+
+// Longest sleep of the loop: how soon it sees a stop request with nothing else to do.
+constexpr std::chrono::milliseconds kIdleWake{100};
+
+double percentile(std::vector<double> values, double fraction) {
+  if (values.empty()) return 0.0;
+  const auto index = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index), values.end());
+  return values[index];
+}
+
+}  // namespace
 
 RealtimeAxisNode::RealtimeAxisNode(dds::DdsContext& context, AxisNodeConfig config,
                                    std::chrono::milliseconds watchdog)
@@ -14,50 +30,54 @@ RealtimeAxisNode::RealtimeAxisNode(dds::DdsContext& context, AxisNodeConfig conf
 }
 
 void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
-  link_.publish_status(netmc::dds::NODE_IDLE, "ready");
-  // DDS samples are taken on this thread and handled on the io thread, with the timers.
-  std::thread dds_thread([&] {
-    eprosima::fastdds::dds::WaitSet waitset;
-    waitset.attach_condition(link_.control().condition());
-    waitset.attach_condition(link_.setpoints().condition());
-    while (!stop.load()) {
-      while (auto control = link_.control().try_take()) {
-        if (link_.hosts(control->axis())) boost::asio::post(io_, [this, c = std::move(*control)] { handle(c); });
-      }
-      while (auto setpoint = link_.setpoints().try_take()) {
-        if (link_.hosts(setpoint->axis())) boost::asio::post(io_, [this, s = *setpoint] { handle(s); });
-      }
-      eprosima::fastdds::dds::ConditionSeq active;
-      waitset.wait(active, eprosima::fastrtps::Duration_t(0, 100'000'000));
+  realtime::tighten_timer_slack();
+  eprosima::fastdds::dds::WaitSet waitset;
+  waitset.attach_condition(link_.control().condition());
+  waitset.attach_condition(link_.setpoints().condition());
+  auto next_status = Clock::now();
+  while (!stop.load()) {
+    const auto now = Clock::now();
+    // Due samples first: a sample is taken at its time, then the setpoints that came meanwhile
+    // are applied (on arrival, as they would be anyway: after the sample instant).
+    for (auto& [name, axis] : axes_) {
+      if (sampling(axis) && axis.next_sample <= now) sample(name, axis, now);
+      if (axis.ending && axis.report_at <= now) end_iteration(name, axis);
     }
-  });
-  boost::asio::steady_timer status_timer(io_);
-  std::function<void()> report = [&] {
-    bool running = false, holding = false;
+    while (auto setpoint = link_.setpoints().try_take()) handle(*setpoint);
+    while (auto control = link_.control().try_take()) handle(*control);
+    if (now >= next_status) {
+      publish_status();
+      next_status = now + kStatusPeriod;
+    }
+    auto wake = std::min(next_status, Clock::now() + kIdleWake);
     for (const auto& [name, axis] : axes_) {
-      running = running || axis.endpoint != nullptr;
-      holding = holding || axis.holding;
+      if (sampling(axis)) wake = std::min(wake, axis.next_sample);
+      if (axis.ending) wake = std::min(wake, axis.report_at);
     }
-    link_.publish_status(holding ? netmc::dds::NODE_HOLD
-                           : running ? netmc::dds::NODE_RUNNING : netmc::dds::NODE_IDLE,
-                   holding ? "watchdog: no setpoint in time, holding" : running ? "running a job" : "ready");
-    if (stop.load()) {
-      io_.stop();
-      return;
+    const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(wake - Clock::now()).count();
+    if (left > 0) {
+      eprosima::fastdds::dds::ConditionSeq active;
+      waitset.wait(active, eprosima::fastrtps::Duration_t(static_cast<int32_t>(left / 1'000'000'000),
+                                                          static_cast<uint32_t>(left % 1'000'000'000)));
     }
-    status_timer.expires_after(kStatusPeriod);
-    status_timer.async_wait([&](const boost::system::error_code&) { report(); });
-  };
-  report();
-  io_.run();
-  dds_thread.join();
+  }
+}
+
+void RealtimeAxisNode::publish_status() {
+  bool running = false, holding = false;
+  for (const auto& [name, axis] : axes_) {
+    running = running || axis.endpoint != nullptr;
+    holding = holding || axis.holding;
+  }
+  link_.publish_status(holding ? netmc::dds::NODE_HOLD
+                       : running ? netmc::dds::NODE_RUNNING : netmc::dds::NODE_IDLE,
+                       holding ? "watchdog: no setpoint in time, holding" : running ? "running a job" : "ready");
 }
 
 void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
   const auto owned = axes_.find(control.axis());
   if (owned == axes_.end()) return;
   OwnedAxis& axis = owned->second;
-  const std::string& name = owned->first;
   if (const std::string why = link_.admit(control); !why.empty()) {
     if (control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty()) {
       link_.refuse(control, netmc::dds::AXIS_REFUSED, why);
@@ -67,17 +87,16 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
   switch (control.kind()) {
     case netmc::dds::CONTROL_BEGIN_ITERATION: {
       if (!control.job_spec().empty()) {
-        if (axis.timer) axis.timer->cancel();
         try {
           static_cast<JobAxis&>(axis) = link_.start_job(control);
         } catch (const std::exception& error) {
           axis.endpoint.reset();
-          link_.release(control.server(), control.job_id());
+          axis.running = axis.ending = false;
+          link_.release(control.axis(), control.server(), control.job_id());
           link_.refuse(control, netmc::dds::AXIS_FAULT, error.what());
           return;
         }
         axis.server = control.server();
-        axis.timer = std::make_unique<boost::asio::steady_timer>(io_);
       }
       if (!axis.endpoint || axis.job_id != control.job_id() || !std::isfinite(control.start_time_s()) ||
           !std::isfinite(control.start_position_m())) {
@@ -94,7 +113,12 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
       axis.samples = 0;
       axis.commands_received = 0;
       axis.server_send_times.clear();
-      schedule(axis, name);
+      axis.feedback_sent.clear();
+      axis.round_trips_s.clear();
+      axis.wake_late_s.clear();
+      axis.round_trips_s.reserve(axis.cycles);
+      axis.wake_late_s.reserve(axis.cycles);
+      schedule(axis);
       return;
     }
     case netmc::dds::CONTROL_END_ITERATION: {
@@ -102,28 +126,21 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
       // Sampling stops now; the report waits two periods (at least 10 ms), since the last
       // setpoints travel best-effort on another topic and may arrive after this message: they
       // are counted as received, not as missing.
-      if (axis.timer) axis.timer->cancel();
       axis.running = false;
       axis.ending = true;
+      axis.commands_sent = control.cycle();
       const auto grace = std::max(std::chrono::duration<double>(2.0 * axis.sample_period_s),
                                   std::chrono::duration<double>(0.010));
-      axis.timer->expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(grace));
-      axis.timer->async_wait([this, name, iteration = axis.iteration, sent = control.cycle()](
-                                 const boost::system::error_code& error) {
-        OwnedAxis& ending = axes_.at(name);
-        if (error || !ending.endpoint || !ending.ending || ending.iteration != iteration) return;
-        end_iteration(name, ending, sent);
-      });
+      axis.report_at = Clock::now() + std::chrono::duration_cast<Clock::duration>(grace);
       return;
     }
     case netmc::dds::CONTROL_END_JOB:
       if (axis.job_id == control.job_id()) {
-        if (axis.timer) axis.timer->cancel();
         axis.endpoint.reset();
         axis.running = false;
         axis.ending = false;
         axis.holding = false;
-        link_.release(control.server(), control.job_id());
+        link_.release(control.axis(), control.server(), control.job_id());
       }
       return;
   }
@@ -134,7 +151,8 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   if (owned == axes_.end()) return;
   OwnedAxis& axis = owned->second;
   if (!axis.endpoint || !(axis.running || axis.ending) || axis.job_id != setpoint.job_id() ||
-      axis.iteration != setpoint.iteration() || !link_.from_holder(setpoint.server(), setpoint.job_id())) {
+      axis.iteration != setpoint.iteration() ||
+      !link_.from_holder(setpoint.axis(), setpoint.server(), setpoint.job_id())) {
     return;
   }
   if (axis.ending) {  // arrived after the iteration's end: late, but not lost
@@ -146,6 +164,11 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
       setpoint.cycle() >= axis.cycles) {
     return;
   }
+  const auto arrived = Clock::now();
+  if (const auto sent = axis.feedback_sent.find(setpoint.cycle()); sent != axis.feedback_sent.end()) {
+    axis.round_trips_s.push_back(std::chrono::duration<double>(arrived - sent->second).count());
+    axis.feedback_sent.erase(axis.feedback_sent.begin(), std::next(sent));
+  }
   // The setpoint leaves for the actuator now: netsim's downlink delay starts here.
   const double now = link_.now_s() - axis.start_time_s;
   axis.endpoint->submit_setpoint(now, setpoint.cycle(), setpoint.command());
@@ -155,17 +178,13 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   ++axis.commands_received;
 }
 
-void RealtimeAxisNode::schedule(OwnedAxis& axis, const std::string& axis_name) {
+void RealtimeAxisNode::schedule(OwnedAxis& axis) const {
   const double t = static_cast<double>(axis.next_cycle) * axis.sample_period_s;
-  axis.timer->expires_at(dds::steady_time_at(link_.config().time_base, axis.start_time_s + t));
-  axis.timer->async_wait([this, axis_name](const boost::system::error_code& error) {
-    if (!error) tick(axis_name);
-  });
+  axis.next_sample = dds::steady_time_at(link_.config().time_base, axis.start_time_s + t);
 }
 
-void RealtimeAxisNode::tick(const std::string& axis_name) {
-  OwnedAxis& axis = axes_.at(axis_name);
-  if (!axis.endpoint || !axis.running || axis.next_cycle >= axis.cycles) return;
+void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clock::time_point now) {
+  axis.wake_late_s.push_back(std::chrono::duration<double>(now - axis.next_sample).count());
   const std::uint64_t k = axis.next_cycle;
   const double t = static_cast<double>(k) * axis.sample_period_s;
   netmc::dds::Feedback feedback;
@@ -198,13 +217,13 @@ void RealtimeAxisNode::tick(const std::string& axis_name) {
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
   feedback.stale_setpoints(axis.endpoint->stale_setpoints());
   link_.publish(feedback);
+  axis.feedback_sent.emplace_hint(axis.feedback_sent.end(), k, Clock::now());
   ++axis.samples;
   ++axis.next_cycle;
-  if (axis.next_cycle < axis.cycles) schedule(axis, axis_name);
+  if (axis.next_cycle < axis.cycles) schedule(axis);
 }
 
-void RealtimeAxisNode::end_iteration(const std::string& axis_name, OwnedAxis& axis,
-                                     std::uint64_t commands_sent) {
+void RealtimeAxisNode::end_iteration(const std::string& axis_name, OwnedAxis& axis) {
   axis.ending = false;
   netmc::dds::AxisEvent event;
   event.axis(axis_name);
@@ -215,8 +234,21 @@ void RealtimeAxisNode::end_iteration(const std::string& axis_name, OwnedAxis& ax
   event.samples(axis.samples);
   event.lost_setpoints(axis.endpoint->lost_setpoints());
   event.stale_setpoints(axis.endpoint->stale_setpoints());
-  event.missing_setpoints(commands_sent > axis.commands_received ? commands_sent - axis.commands_received : 0);
+  event.missing_setpoints(axis.commands_sent > axis.commands_received ? axis.commands_sent - axis.commands_received
+                                                                      : 0);
   link_.publish_event(event);
+  // The node's own view of the loop's timing, for the operator and bench/realtime_sweep.sh.
+  const double us = 1e6;
+  std::cout << fmt::format(
+                   "netmc-axis {}: axis {} job {} iteration {}: {} samples, sample wake-up late p50 {:.0f} us "
+                   "p99 {:.0f} us; round trip feedback->setpoint p50 {:.0f} us p99 {:.0f} us max {:.0f} us ({} "
+                   "setpoints)",
+                   link_.config().node, axis_name, axis.job_id, axis.iteration, axis.samples,
+                   percentile(axis.wake_late_s, 0.50) * us, percentile(axis.wake_late_s, 0.99) * us,
+                   percentile(axis.round_trips_s, 0.50) * us, percentile(axis.round_trips_s, 0.99) * us,
+                   axis.round_trips_s.empty() ? 0.0 : *std::max_element(axis.round_trips_s.begin(), axis.round_trips_s.end()) * us,
+                   axis.round_trips_s.size())
+            << std::endl;
 }
 
 }  // namespace netmc::axis
