@@ -304,6 +304,7 @@ DdsContext::~DdsContext() {
 }
 
 Publisher* DdsContext::publisher_for(const std::string& partition) {
+  // Called with entities_mutex_ held.
   if (partition.empty()) return publisher_;
   auto& publisher = partition_publishers_[partition];
   if (!publisher) {
@@ -316,6 +317,7 @@ Publisher* DdsContext::publisher_for(const std::string& partition) {
 }
 
 DataWriter* DdsContext::writer(Topic* topic, Delivery delivery, const std::string& partition) {
+  std::lock_guard lock(entities_mutex_);
   Publisher* publisher = publisher_for(partition);
   DataWriterQos qos = DATAWRITER_QOS_DEFAULT;
   // An XML <data_writer profile_name="TOPIC"> replaces the built-in QoS of that topic.
@@ -333,6 +335,7 @@ DataWriter* DdsContext::writer(Topic* topic, Delivery delivery, const std::strin
 }
 
 DataReader* DdsContext::reader(Topic* topic, Delivery delivery, const std::vector<std::string>& partitions) {
+  std::lock_guard lock(entities_mutex_);
   Subscriber* subscriber = subscriber_;
   if (!partitions.empty()) {
     SubscriberQos subscriber_qos = SUBSCRIBER_QOS_DEFAULT;
@@ -355,12 +358,17 @@ DataReader* DdsContext::reader(Topic* topic, Delivery delivery, const std::vecto
 }
 
 void DdsContext::remove_reader(DataReader* reader) {
-  const_cast<Subscriber*>(reader->get_subscriber())->delete_datareader(reader);
+  std::lock_guard lock(entities_mutex_);
+  auto* subscriber = const_cast<Subscriber*>(reader->get_subscriber());
+  subscriber->delete_datareader(reader);
   trackers_.erase(reader);
+  // A partitioned reader came with a subscriber of its own (reader()): it goes too.
+  if (subscriber != subscriber_ && !subscriber->has_datareaders()) participant_->delete_subscriber(subscriber);
 }
 
 bool DdsContext::matches_participants(const DomainEntity* endpoint,
                                       const std::vector<std::string>& participants) const {
+  std::lock_guard lock(entities_mutex_);
   const auto it = trackers_.find(endpoint);
   return it != trackers_.end() && it->second->has(participants);
 }

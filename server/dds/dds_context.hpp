@@ -24,6 +24,7 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -109,11 +110,14 @@ class DdsContext {
   std::string transport_description_;
   std::string identity_;
   bool xml_loaded_ = false;
+  // Jobs run on threads of their own and make and remove their endpoints concurrently.
+  mutable std::mutex entities_mutex_;
   std::map<const eprosima::fastdds::dds::DomainEntity*, std::unique_ptr<MatchTracker>> trackers_;
 };
 
 template <typename PubSubType>
 eprosima::fastdds::dds::Topic* DdsContext::topic(const std::string& name) {
+  std::lock_guard lock(entities_mutex_);
   if (const auto it = topics_.find(name); it != topics_.end()) return it->second;
   eprosima::fastdds::dds::TypeSupport type(new PubSubType());
   type.register_type(participant_);

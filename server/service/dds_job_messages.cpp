@@ -91,23 +91,40 @@ std::size_t axis_index(const JobChannels& channels, const std::string& axis) {
                                   channels.axes.begin());
 }
 
+namespace {
+
+// True if `event` is an iteration end of this job (handed to `on_ended`); throws on a refusal or fault.
+bool handle_axis_event(const JobChannels& channels, std::uint64_t job_id, const netmc::dds::AxisEvent& event,
+                       const std::function<void(const netmc::dds::AxisEvent&)>& on_ended) {
+  if (event.server() != channels.server || event.job_id() != job_id ||
+      axis_index(channels, event.axis()) >= channels.axes.size()) {
+    return false;
+  }
+  switch (event.kind()) {
+    case netmc::dds::AXIS_REFUSED:
+      throw JobFailure("axis " + event.axis() + " refused the job: " + event.detail());
+    case netmc::dds::AXIS_FAULT:
+      throw JobFailure("axis " + event.axis() + " cannot run the job: " + event.detail());
+    case netmc::dds::AXIS_ITERATION_ENDED:
+      if (on_ended) on_ended(event);
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void poll_axis_events(const JobChannels& channels, std::uint64_t job_id,
                       const std::function<void(const netmc::dds::AxisEvent&)>& on_ended) {
-  while (auto event = channels.events->try_take()) {
-    if (event->server() != channels.server || event->job_id() != job_id ||
-        axis_index(channels, event->axis()) >= channels.axes.size()) {
-      continue;
-    }
-    switch (event->kind()) {
-      case netmc::dds::AXIS_REFUSED:
-        throw JobFailure("axis " + event->axis() + " refused the job: " + event->detail());
-      case netmc::dds::AXIS_FAULT:
-        throw JobFailure("axis " + event->axis() + " cannot run the job: " + event->detail());
-      case netmc::dds::AXIS_ITERATION_ENDED:
-        if (on_ended) on_ended(*event);
-        break;
-    }
+  while (auto event = channels.events->try_take()) handle_axis_event(channels, job_id, *event, on_ended);
+}
+
+bool wait_axis_event(const JobChannels& channels, std::uint64_t job_id, std::chrono::steady_clock::time_point until,
+                     const std::function<void(const netmc::dds::AxisEvent&)>& on_ended) {
+  while (auto event = channels.events->take_until(until)) {
+    if (handle_axis_event(channels, job_id, *event, on_ended)) return true;
   }
+  return false;
 }
 
 void publish_iteration_log(const JobChannels& channels, std::uint64_t job_id,

@@ -57,6 +57,10 @@ class JobPublisher {
 // fault, hands iteration ends to `on_ended`.
 void poll_axis_events(const JobChannels& channels, std::uint64_t job_id,
                       const std::function<void(const netmc::dds::AxisEvent&)>& on_ended);
+// Waits until `until` for the next event of this server's job `job_id` and handles it as
+// poll_axis_events does; false if none came.
+bool wait_axis_event(const JobChannels& channels, std::uint64_t job_id, std::chrono::steady_clock::time_point until,
+                     const std::function<void(const netmc::dds::AxisEvent&)>& on_ended);
 // Index of `axis` in channels.axes, or channels.axes.size() if it is not the job's.
 std::size_t axis_index(const JobChannels& channels, const std::string& axis);
 

@@ -1,10 +1,13 @@
 #include "server/service/job_service.hpp"
 
+#include <algorithm>
 #include <iostream>
+#include <optional>
 
 #include "dds_typesPubSubTypes.h"
 #include "server/dds/topics.hpp"
 #include "server/job/job_builder.hpp"
+#include "server/realtime/realtime_scheduling.hpp"
 #include "server/service/lockstep_dds_runner.hpp"
 #include "server/service/realtime_dds_runner.hpp"
 
@@ -30,6 +33,23 @@ const char* health_name(netmc::dds::NodeHealth health) {
   return "unknown";
 }
 
+// A reader a job makes for itself and removes when it ends.
+template <typename Sample>
+struct JobReader {
+  JobReader(dds::DdsContext& owner, eprosima::fastdds::dds::DataReader* reader) : context(owner) {
+    samples.emplace(reader);
+  }
+  ~JobReader() {
+    auto* reader = samples->get();
+    samples.reset();  // its WaitSet lets go of the reader first
+    context.remove_reader(reader);
+  }
+  JobReader(const JobReader&) = delete;
+  JobReader& operator=(const JobReader&) = delete;
+  dds::DdsContext& context;
+  std::optional<dds::SampleReader<Sample>> samples;
+};
+
 }  // namespace
 
 JobService::JobService(dds::DdsContext& context, NodeDirectory& nodes, ClockTracker& clocks,
@@ -40,16 +60,10 @@ JobService::JobService(dds::DdsContext& context, NodeDirectory& nodes, ClockTrac
       options_(options),
       control_(context.writer(context.topic<netmc::dds::JobControlPubSubType>(dds::kJobControlTopic),
                               dds::Delivery::control)),
-      realtime_feedback_(context.reader(
-          context.topic<netmc::dds::FeedbackPubSubType>(dds::kRealtimeFeedbackTopic), dds::Delivery::stream)),
-      lockstep_feedback_(context.reader(
-          context.topic<netmc::dds::FeedbackPubSubType>(dds::kLockstepFeedbackTopic), dds::Delivery::exchange)),
-      events_(context.reader(context.topic<netmc::dds::AxisEventPubSubType>(dds::kAxisEventTopic),
-                             dds::Delivery::control)),
       iteration_logs_(context.writer(
           context.topic<netmc::dds::IterationLogPubSubType>(dds::kIterationLogTopic),
           dds::Delivery::log)),
-      worker_([this] { work(); }) {}
+      scheduler_([this] { schedule(); }) {}
 
 JobService::~JobService() {
   {
@@ -58,7 +72,7 @@ JobService::~JobService() {
     for (auto& [id, job] : jobs_) job->cancel.store(true);
   }
   wake_.notify_all();
-  worker_.join();
+  scheduler_.join();  // it joins every job thread before it returns
 }
 
 void JobService::handle(const std::shared_ptr<management::Session>& session,
@@ -76,6 +90,7 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
         return;
       }
       auto job = std::make_shared<Job>();
+      job->axes = job::axis_names(spec);
       job->spec = spec;
       job->session = session;
       job->request_id = request.request_id();
@@ -131,7 +146,12 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
         info.set_clock(record.status.clock());
         info.set_time_base(record.status.time_base());
         info.set_participant(record.status.participant());
-        info.set_held_by(record.status.held_by());
+        std::string holders;
+        for (const auto& hold : record.status.holds()) {
+          holders += (holders.empty() ? "" : ", ") + hold.axis() + ": " + hold.server() + " job " +
+                     std::to_string(hold.job_id());
+        }
+        info.set_held_by(holders);
         if (const auto clock = clocks_.estimate(record.status.node())) {
           info.set_clock_measured(true);
           info.set_clock_offset_s(clock->offset_s);
@@ -152,24 +172,55 @@ void JobService::reply(Job& job, netmc::v1::Response response) {
   if (auto session = job.session.lock()) session->send(response);
 }
 
-void JobService::work() {
+void JobService::schedule() {
+  std::unique_lock lock(mutex_);
   while (true) {
-    std::shared_ptr<Job> job;
-    {
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
-      if (stopping_) return;
-      job = queue_.front();
-      queue_.pop_front();
+    for (auto& thread : finished_) thread.join();
+    finished_.clear();
+    if (stopping_) break;
+    std::set<std::string> claimed = busy_axes_;
+    for (auto it = queue_.begin(); it != queue_.end();) {
+      const auto job = *it;
+      const bool free = std::none_of(job->axes.begin(), job->axes.end(),
+                                     [&](const std::string& axis) { return claimed.count(axis) > 0; });
+      claimed.insert(job->axes.begin(), job->axes.end());
+      if (!free || running_.size() >= options_.max_running_jobs) {
+        ++it;
+        continue;
+      }
+      it = queue_.erase(it);
+      busy_axes_.insert(job->axes.begin(), job->axes.end());
       job->status.set_state("running");
+      running_.emplace(job->id, std::thread([this, job] {
+        run(*job);
+        finish(job);
+      }));
     }
-    run(*job);
+    wake_.wait(lock);
   }
+  // Stopping: the jobs were cancelled; wait for their threads.
+  while (!running_.empty()) {
+    wake_.wait(lock);
+    for (auto& thread : finished_) thread.join();
+    finished_.clear();
+  }
+}
+
+void JobService::finish(const std::shared_ptr<Job>& job) {
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& axis : job->axes) busy_axes_.erase(axis);
+    const auto it = running_.find(job->id);
+    finished_.push_back(std::move(it->second));
+    running_.erase(it);
+  }
+  wake_.notify_all();
 }
 
 eprosima::fastdds::dds::DataWriter* JobService::setpoint_writer(bool realtime, const std::string& axis) {
   // One writer per axis and clock, in the axis's partition; made on first use and kept (at most
   // one per axis a node ever hosted: bounded by the lab's axes).
+  std::lock_guard lock(writers_mutex_);
   auto& writer = setpoint_writers_[{realtime, axis}];
   if (!writer) {
     writer = context_.writer(context_.topic<netmc::dds::SetpointPubSubType>(
@@ -179,7 +230,7 @@ eprosima::fastdds::dds::DataWriter* JobService::setpoint_writer(bool realtime, c
   return writer;
 }
 
-std::vector<NodeRecord> JobService::find_nodes(const Job& job) {
+std::vector<NodeRecord> JobService::find_nodes(const Job& job, const JobChannels& channels) {
   const std::string clock = job.spec.clock().empty() ? "lockstep" : job.spec.clock();
   const bool realtime = clock == "realtime";
   std::vector<NodeRecord> found;
@@ -203,9 +254,11 @@ std::vector<NodeRecord> JobService::find_nodes(const Job& job) {
       throw JobFailure("node " + node->status.node() + " hosts plant '" + node->status.plant() +
                        "' but the job needs '" + job.spec.plant() + "'");
     }
-    if (!node->status.held_by().empty() && node->status.held_by() != context_.identity()) {
-      throw JobFailure("axis " + axis + " (node " + node->status.node() + ") is held by server " +
-                       node->status.held_by() + ", job " + std::to_string(node->status.job_id()));
+    for (const auto& hold : node->status.holds()) {
+      if (hold.axis() == axis && hold.server() != context_.identity()) {
+        throw JobFailure("axis " + axis + " (node " + node->status.node() + ") is held by server " +
+                         hold.server() + ", job " + std::to_string(hold.job_id()));
+      }
     }
     found.push_back(*node);
     participants.push_back(node->status.participant());
@@ -218,10 +271,9 @@ std::vector<NodeRecord> JobService::find_nodes(const Job& job) {
   // The very participants that host the axes must be matched both ways (our control and
   // setpoints, above, to their readers, their feedback and events to ours): an endpoint of a node that
   // died, which DDS still counts for its lease, does not do.
-  const auto* feedback = realtime ? realtime_feedback_.get() : lockstep_feedback_.get();
   if (!context_.wait_for_participants(control_, participants, options_.discovery_timeout) ||
-      !context_.wait_for_participants(feedback, participants, options_.discovery_timeout) ||
-      !context_.wait_for_participants(events_.get(), participants, options_.discovery_timeout)) {
+      !context_.wait_for_participants(channels.feedback->get(), participants, options_.discovery_timeout) ||
+      !context_.wait_for_participants(channels.events->get(), participants, options_.discovery_timeout)) {
     throw JobFailure("the axis nodes were discovered but their readers did not match within " +
                      std::to_string(options_.discovery_timeout.count()) + " ms");
   }
@@ -235,8 +287,28 @@ void JobService::run(Job& job) {
   std::string state = "done";
   try {
     if (job.cancel.load()) throw JobFailure("cancelled before it started");
+    realtime::tighten_timer_slack();  // this thread sleeps to cycle deadlines
     const bool realtime = job.spec.clock() == "realtime";
-    const std::vector<NodeRecord> nodes = find_nodes(job);
+    // This job's own readers, in its axes' partitions: it sees its axes' samples and no others.
+    std::vector<std::string> partitions;
+    for (const auto& axis : job.axes) partitions.push_back(dds::partition_of_axis(axis));
+    JobReader<netmc::dds::Feedback> feedback(
+        context_,
+        context_.reader(context_.topic<netmc::dds::FeedbackPubSubType>(realtime ? dds::kRealtimeFeedbackTopic
+                                                                                : dds::kLockstepFeedbackTopic),
+                        realtime ? dds::Delivery::stream : dds::Delivery::exchange, partitions));
+    JobReader<netmc::dds::AxisEvent> events(
+        context_, context_.reader(context_.topic<netmc::dds::AxisEventPubSubType>(dds::kAxisEventTopic),
+                                  dds::Delivery::control, partitions));
+    JobChannels channels;
+    channels.server = context_.identity();
+    channels.axes = job.axes;
+    channels.control = control_;
+    channels.feedback = &*feedback.samples;
+    channels.events = &*events.samples;
+    channels.iteration_logs = iteration_logs_;
+    for (const auto& axis : channels.axes) channels.setpoints.push_back(setpoint_writer(realtime, axis));
+    const std::vector<NodeRecord> nodes = find_nodes(job, channels);
     const auto on_iteration = [&](const sim::IterationRecord& record) {
       const auto metrics = job::to_proto(record.metrics);
       *done.mutable_result()->add_iterations() = metrics;
@@ -251,15 +323,7 @@ void JobService::run(Job& job) {
       *iteration.mutable_metrics() = metrics;
       reply(job, update);
     };
-    JobChannels channels;
-    channels.server = context_.identity();
-    channels.axes = job::axis_names(job.spec);
-    channels.control = control_;
-    channels.events = &events_;
-    channels.iteration_logs = iteration_logs_;
-    for (const auto& axis : channels.axes) channels.setpoints.push_back(setpoint_writer(realtime, axis));
     if (realtime) {
-      channels.feedback = &realtime_feedback_;
       // Before the first iteration every node's clock must have been measured a few times.
       const auto deadline = std::chrono::steady_clock::now() + options_.discovery_timeout;
       for (const auto& node : nodes) {
@@ -280,7 +344,6 @@ void JobService::run(Job& job) {
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
       runner.run(on_iteration, job.cancel);
     } else {
-      channels.feedback = &lockstep_feedback_;
       LockstepDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout);
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
       runner.run(on_iteration, job.cancel);

@@ -1,7 +1,9 @@
 #pragma once
-// netmc-server's job service: accepts jobs over the management endpoint, runs them one at a time
-// on the discovered axis nodes (lockstep over DDS), streams each iteration's metrics back to the
-// submitting client and keeps every job's status.
+// netmc-server's job service: accepts jobs over the management endpoint, runs them on the
+// discovered axis nodes over DDS, streams each iteration's metrics back to the submitting client
+// and keeps every job's status. Jobs on disjoint axes run at once, each on a thread of its own
+// with DDS readers of its own (in its axes' partitions, so no job sees another's samples); a
+// job waits in the queue only while one of its axes is busy, or the running-job limit is reached.
 
 #include <atomic>
 #include <chrono>
@@ -10,12 +12,14 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include "idl/management.pb.h"
 #include "server/dds/dds_context.hpp"
 #include "server/management/management_server.hpp"
 #include "server/service/clock_tracker.hpp"
+#include "server/service/dds_job_messages.hpp"
 #include "server/service/node_directory.hpp"
 
 namespace netmc::service {
@@ -25,6 +29,7 @@ struct JobServiceOptions {
   std::chrono::milliseconds discovery_timeout{10000}; // waiting for the nodes of a job
   std::chrono::milliseconds silence_limit{500};       // realtime: an axis silent this long fails
   dds::TimeBase time_base = dds::TimeBase::monotonic; // realtime jobs' schedule
+  std::size_t max_running_jobs = 32;
 };
 
 class JobService {
@@ -46,14 +51,18 @@ class JobService {
     std::uint64_t request_id = 0;
     netmc::v1::JobStatus status;
     std::atomic<bool> cancel{false};
+    std::vector<std::string> axes;
   };
 
-  void work();
+  // Starts every queued job whose axes are free, in submission order: a job never overtakes an
+  // earlier one that waits for one of its axes.
+  void schedule();
   void run(Job& job);
+  void finish(const std::shared_ptr<Job>& job);
   void reply(Job& job, netmc::v1::Response response);
 
   // The nodes hosting the job's axes, checked against its clock and plant, matched by DDS.
-  std::vector<NodeRecord> find_nodes(const Job& job);
+  std::vector<NodeRecord> find_nodes(const Job& job, const JobChannels& channels);
   eprosima::fastdds::dds::DataWriter* setpoint_writer(bool realtime, const std::string& axis);
 
   dds::DdsContext& context_;
@@ -61,19 +70,20 @@ class JobService {
   ClockTracker& clocks_;
   JobServiceOptions options_;
   eprosima::fastdds::dds::DataWriter* control_;
-  std::map<std::pair<bool, std::string>, eprosima::fastdds::dds::DataWriter*> setpoint_writers_;  // worker thread
-  dds::SampleReader<netmc::dds::Feedback> realtime_feedback_;
-  dds::SampleReader<netmc::dds::Feedback> lockstep_feedback_;
-  dds::SampleReader<netmc::dds::AxisEvent> events_;
+  std::mutex writers_mutex_;
+  std::map<std::pair<bool, std::string>, eprosima::fastdds::dds::DataWriter*> setpoint_writers_;
   eprosima::fastdds::dds::DataWriter* iteration_logs_;
 
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<std::shared_ptr<Job>> queue_;
   std::map<std::uint64_t, std::shared_ptr<Job>> jobs_;
+  std::set<std::string> busy_axes_;
+  std::map<std::uint64_t, std::thread> running_;   // job threads, by job id
+  std::vector<std::thread> finished_;              // to be joined
   std::uint64_t next_id_ = 1;
   bool stopping_ = false;
-  std::thread worker_;
+  std::thread scheduler_;
 };
 
 }  // namespace netmc::service

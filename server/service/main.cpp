@@ -11,6 +11,7 @@
 
 #include "server/dds/dds_options_cli.hpp"
 #include "server/management/management_server.hpp"
+#include "server/realtime/realtime_options_cli.hpp"
 #include "server/service/job_service.hpp"
 #include "server/service/node_directory.hpp"
 
@@ -35,8 +36,14 @@ int main(int argc, char** argv) {
                  "Realtime: milliseconds without any feedback from an axis before the job fails "
                  "(lost samples alone do not fail a job)")
       ->check(CLI::Range(1, 600000));
+  int max_running_jobs = 32;
+  app.add_option("--max-running-jobs", max_running_jobs,
+                 "Jobs run at once, each on disjoint axes and its own thread; more wait in the queue")
+      ->check(CLI::Range(1, 256));
   netmc::dds::add_time_base_option(app, time_base);
   netmc::dds::add_dds_options(app, dds);
+  netmc::realtime::RealtimeScheduling scheduling;
+  netmc::realtime::add_realtime_options(app, scheduling);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -58,13 +65,18 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
+    // Before the participant: its threads, and every job thread, inherit the scheduling.
+    const auto scheduling_outcome = netmc::realtime::apply_process_scheduling(scheduling);
+    for (const auto& fallback : scheduling_outcome.fallbacks) {
+      std::cerr << "netmc-server: warning: " << fallback << "; running without it" << std::endl;
+    }
     netmc::dds::DdsContext context(dds);
     netmc::service::NodeDirectory nodes(context);
     netmc::service::ClockTracker clocks(context, nodes, time_base);
     netmc::service::JobService jobs(
         context, nodes, clocks,
         {std::chrono::milliseconds(axis_timeout_ms), std::chrono::milliseconds(discovery_timeout_ms),
-         std::chrono::milliseconds(silence_ms), time_base});
+         std::chrono::milliseconds(silence_ms), time_base, static_cast<std::size_t>(max_running_jobs)});
     boost::asio::io_context io;
     netmc::management::ManagementServer server(
         io, listen.substr(0, colon), static_cast<std::uint16_t>(port),
@@ -79,7 +91,7 @@ int main(int argc, char** argv) {
     std::cout << "netmc-server: listening on " << listen.substr(0, colon) << ":" << server.port()
               << ", DDS domain " << dds.domain_id << " (" << context.describe_transport()
               << "), server " << context.identity() << ", time base "
-              << netmc::dds::time_base_name(time_base) << std::endl;
+              << netmc::dds::time_base_name(time_base) << ", " << scheduling_outcome.describe() << std::endl;
     io.run();
     return 0;
   } catch (const std::invalid_argument& e) {

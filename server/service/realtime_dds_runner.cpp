@@ -111,19 +111,22 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
         server_.correct_compute_delay(std::chrono::duration<double>(departure - ready).count());
       }
       for (std::size_t axis = 0; axis < axes; ++axis) publisher_.end_iteration(axis, iteration, commands_sent);
-      // The axes' reports carry their downlink counters; the iteration ends when all are in.
+      // The axes' reports carry their downlink counters; the iteration ends as soon as all are
+      // in (each axis sends its report two periods, at least 10 ms, after END_ITERATION).
       std::vector<netmc::dds::AxisEvent> ended(axes);
       std::vector<bool> ended_in(axes, false);
+      std::size_t reports = 0;
       const auto final_deadline = Clock::now() + limits_.axis_timeout;
-      while (std::find(ended_in.begin(), ended_in.end(), false) != ended_in.end()) {
-        poll_axis_events(channels_, publisher_.job_id(), [&](const netmc::dds::AxisEvent& event) {
-          const std::size_t axis = axis_index(channels_, event.axis());
-          if (event.iteration() != iteration) return;
-          ended[axis] = event;
-          ended_in[axis] = true;
-        });
-        if (std::find(ended_in.begin(), ended_in.end(), false) == ended_in.end()) break;
-        if (Clock::now() >= final_deadline) {
+      while (reports < axes) {
+        const bool got = wait_axis_event(channels_, publisher_.job_id(), final_deadline,
+                                         [&](const netmc::dds::AxisEvent& event) {
+                                           const std::size_t axis = axis_index(channels_, event.axis());
+                                           if (event.iteration() != iteration || ended_in[axis]) return;
+                                           ended[axis] = event;
+                                           ended_in[axis] = true;
+                                           ++reports;
+                                         });
+        if (!got && Clock::now() >= final_deadline) {
           for (std::size_t axis = 0; axis < axes; ++axis) {
             if (!ended_in[axis]) {
               throw JobFailure("axis " + channels_.axes[axis] + " did not confirm the end of iteration " +
@@ -132,8 +135,9 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
             }
           }
         }
-        channels_.feedback->take(std::chrono::milliseconds(1));  // late samples: drained, not used
       }
+      while (channels_.feedback->try_take()) {
+      }  // late samples of this iteration: counted by the axes, not used
       std::uint64_t lost = 0, stale = 0, lost_feedback = 0;
       for (std::size_t axis = 0; axis < axes; ++axis) {
         lost += ended[axis].lost_setpoints() + ended[axis].missing_setpoints();
