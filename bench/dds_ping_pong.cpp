@@ -11,6 +11,7 @@
 
 #include "dds_typesPubSubTypes.h"
 #include "server/dds/dds_context.hpp"
+#include "server/realtime/realtime_options_cli.hpp"
 
 namespace {
 
@@ -21,6 +22,7 @@ int pong(netmc::dds::DdsContext& context, double seconds) {
                                 netmc::dds::Delivery::stream);
   netmc::dds::SampleReader<netmc::dds::Feedback> reader(context.reader(
       context.topic<netmc::dds::FeedbackPubSubType>("bench/ping"), netmc::dds::Delivery::stream));
+  netmc::realtime::tighten_timer_slack();
   const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
   netmc::dds::Setpoint reply;
   while (Clock::now() < end) {
@@ -48,6 +50,7 @@ int ping(netmc::dds::DdsContext& context, int rate_hz, int count) {
   netmc::dds::Feedback sample;
   sample.kind(netmc::dds::FEEDBACK_SAMPLE);
   sample.applied().resize(1);
+  netmc::realtime::tighten_timer_slack();
   std::vector<double> rtt_us;
   const auto period = std::chrono::nanoseconds(1'000'000'000 / rate_hz);
   auto next = Clock::now();
@@ -84,7 +87,12 @@ int main(int argc, char** argv) {
   app.add_option("--count", count)->check(CLI::Range(1, 10000000));
   app.add_option("--seconds", seconds, "How long pong serves");
   app.add_option("--domain", domain);
+  netmc::realtime::RealtimeScheduling scheduling;
+  netmc::realtime::add_realtime_options(app, scheduling);  // the same as the closed loop's processes
   CLI11_PARSE(app, argc, argv);
+  for (const auto& fallback : netmc::realtime::apply_process_scheduling(scheduling).fallbacks) {
+    fmt::print(stderr, "netmc_dds_ping_pong: warning: {}\n", fallback);
+  }
   netmc::dds::DdsOptions options;
   options.domain_id = domain;
   options.transport = netmc::dds::Transport::udp;

@@ -222,10 +222,11 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
 
 void AxisNodeLink::answer_probes() {
   while (!stop_.load()) {
-    auto probe = probes_.take(std::chrono::milliseconds(100));
-    if (!probe || probe->node() != config_.node) continue;
+    auto received = probes_.take_until_received(std::chrono::steady_clock::now() + std::chrono::milliseconds(100));
+    if (!received || received->first.node() != config_.node) continue;
+    const auto* probe = &received->first;
     netmc::dds::ClockReply reply;
-    reply.t2_s(now_s());
+    reply.t2_s(dds::time_base_at_s(config_.time_base, received->second));
     reply.server(probe->server());
     reply.node(config_.node);
     reply.number(probe->number());

@@ -401,4 +401,11 @@ bool wait_for_readers(DataWriter* writer, int count, std::chrono::milliseconds t
   return false;
 }
 
+std::chrono::system_clock::time_point received_at(const SampleInfo& info) {
+  const auto& stamp = info.reception_timestamp;
+  if (stamp.seconds() <= 0) return std::chrono::system_clock::now();
+  return std::chrono::system_clock::time_point(std::chrono::duration_cast<std::chrono::system_clock::duration>(
+      std::chrono::seconds(stamp.seconds()) + std::chrono::nanoseconds(stamp.nanosec())));
+}
+
 }  // namespace netmc::dds

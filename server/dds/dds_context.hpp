@@ -135,6 +135,9 @@ inline std::string partition_of_axis(const std::string& axis) { return "netmc.ax
 // resources, not enabled, ...): no write's result is ignored.
 void write_checked(eprosima::fastdds::dds::DataWriter* writer, void* sample);
 
+// The reception timestamp of a sample as a system_clock time (now, if Fast DDS left it unset).
+std::chrono::system_clock::time_point received_at(const eprosima::fastdds::dds::SampleInfo& info);
+
 // Blocking take of one valid sample with a timeout.
 template <typename Sample>
 class SampleReader {
@@ -158,6 +161,26 @@ class SampleReader {
     while (true) {
       while (reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
         if (info.valid_data) return sample;
+      }
+      const auto left = deadline - std::chrono::steady_clock::now();
+      if (left <= std::chrono::steady_clock::duration::zero()) return std::nullopt;
+      const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(left).count();
+      eprosima::fastdds::dds::ConditionSeq active;
+      waitset_.wait(active, eprosima::fastrtps::Duration_t(static_cast<int32_t>(ns / 1000000000),
+                                                          static_cast<uint32_t>(ns % 1000000000)));
+    }
+  }
+
+  // As take_until, with the time Fast DDS received the sample (system clock): stamped on its
+  // receive thread, before this thread wakes, so clock probes measure the network and not the
+  // wake-up of whoever reads them.
+  std::optional<std::pair<Sample, std::chrono::system_clock::time_point>> take_until_received(
+      std::chrono::steady_clock::time_point deadline) {
+    Sample sample;
+    eprosima::fastdds::dds::SampleInfo info;
+    while (true) {
+      while (reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+        if (info.valid_data) return std::make_pair(std::move(sample), received_at(info));
       }
       const auto left = deadline - std::chrono::steady_clock::now();
       if (left <= std::chrono::steady_clock::duration::zero()) return std::nullopt;

@@ -44,6 +44,11 @@ double time_base_now_s(TimeBase base) {
   return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) * 1e-9;
 }
 
+double time_base_at_s(TimeBase base, std::chrono::system_clock::time_point when) {
+  const double ago_s = std::chrono::duration<double>(std::chrono::system_clock::now() - when).count();
+  return time_base_now_s(base) - ago_s;
+}
+
 std::chrono::steady_clock::time_point steady_time_at(TimeBase base, double time_s) {
   // steady_clock is CLOCK_MONOTONIC on Linux; another base is mapped through the present
   // difference (a step of that clock during a job moves the remaining cycles with it).

@@ -18,6 +18,8 @@ TimeBase parse_time_base(const std::string& name);
 const char* time_base_name(TimeBase base);
 // The clock's reading in seconds.
 double time_base_now_s(TimeBase base);
+// The time of `base` at a past system-clock instant (e.g. a DDS reception timestamp).
+double time_base_at_s(TimeBase base, std::chrono::system_clock::time_point when);
 // The steady-clock instant at which `base` reads `time_s` (for Asio steady timers and waits).
 std::chrono::steady_clock::time_point steady_time_at(TimeBase base, double time_s);
 

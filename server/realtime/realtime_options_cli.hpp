@@ -16,6 +16,10 @@ inline void add_realtime_options(CLI::App& app, RealtimeScheduling& options) {
       "--cpus", [&options](const std::string& value) { options.cpus = parse_cpu_list(value, "--cpus"); },
       "Pin the process to these CPUs, e.g. 1 or 2-3 (taskset syntax)");
   app.add_flag("--lock-memory", options.lock_memory, "mlockall: keep every page in RAM (no page fault in a cycle)");
+  app.add_option("--cpu-latency", options.cpu_latency_us,
+                 "Hold the CPUs' wake-up latency at most this many microseconds while running (PM QoS, "
+                 "/dev/cpu_dma_latency, root); 0: idle CPUs poll instead of halting, at the price of their idle time")
+      ->check(CLI::Range(0, 1000000));
 }
 
 }  // namespace netmc::realtime

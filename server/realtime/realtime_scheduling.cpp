@@ -4,9 +4,12 @@
 #include <fmt/ranges.h>
 #include <sched.h>
 #include <sys/mman.h>
+#include <fcntl.h>
 #include <sys/prctl.h>
+#include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 
@@ -76,6 +79,18 @@ SchedulingOutcome apply_process_scheduling(const RealtimeScheduling& options) {
       outcome.applied.push_back("CPUs " + list);
     } else {
       outcome.fallbacks.push_back("--cpus " + list + ": sched_setaffinity: " + error_text(errno));
+    }
+  }
+  if (options.cpu_latency_us >= 0) {
+    // The limit holds while the file stays open: for the process's lifetime (it is never closed).
+    const int fd = ::open("/dev/cpu_dma_latency", O_WRONLY | O_CLOEXEC);
+    const std::int32_t value = options.cpu_latency_us;
+    if (fd >= 0 && ::write(fd, &value, sizeof(value)) == static_cast<ssize_t>(sizeof(value))) {
+      outcome.applied.push_back(fmt::format("CPU wake-up latency <= {} us", options.cpu_latency_us));
+    } else {
+      outcome.fallbacks.push_back(
+          fmt::format("--cpu-latency {}: /dev/cpu_dma_latency: {}", options.cpu_latency_us, error_text(errno)));
+      if (fd >= 0) ::close(fd);
     }
   }
   if (options.fifo_priority > 0) {

@@ -15,6 +15,10 @@ struct RealtimeScheduling {
   int fifo_priority = 0;     // SCHED_FIFO priority 1..99; 0: the normal scheduler
   std::vector<int> cpus;     // CPUs the process may run on; empty: any
   bool lock_memory = false;  // mlockall(current and future): no page fault in a cycle
+  // PM QoS limit on the CPUs' wake-up latency [us], held while the process runs; -1: none.
+  // 0 keeps idle CPUs polling instead of halting: on a virtual machine (cpuidle haltpoll) a
+  // halted vCPU takes tens of microseconds to wake, as much as a loop's whole network budget.
+  int cpu_latency_us = -1;
 };
 
 // What apply_process_scheduling did: each option in effect, or why it fell back.
@@ -28,8 +32,9 @@ struct SchedulingOutcome {
 // std::invalid_argument naming `field` for anything else (or a CPU above 1023).
 std::vector<int> parse_cpu_list(const std::string& text, const std::string& field);
 
-// Applies `options` to the calling thread, the memory lock to the process; threads created
-// afterwards inherit the policy and affinity. Never throws for a refused option.
+// Applies `options` to the calling thread, the memory lock and the CPU latency limit to the
+// process (until it exits); threads created afterwards inherit the policy and affinity. Never
+// throws for a refused option.
 SchedulingOutcome apply_process_scheduling(const RealtimeScheduling& options);
 
 // A loop thread that sleeps to deadlines: the kernel may delay its wake-ups by the timer slack

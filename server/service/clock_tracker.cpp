@@ -66,14 +66,16 @@ void ClockTracker::run() {
         it = live.count(it->first) ? std::next(it) : tracked_.erase(it);
       }
     }
-    auto reply = replies_.take_until(std::min(next_probe, std::chrono::steady_clock::now() + std::chrono::milliseconds(50)));
-    if (!reply) continue;
-    const double t4 = now_s();
-    if (reply->server() != server_) continue;  // another server's probe
+    auto received = replies_.take_until_received(
+        std::min(next_probe, std::chrono::steady_clock::now() + std::chrono::milliseconds(50)));
+    if (!received) continue;
+    const auto& reply = received->first;
+    const double t4 = dds::time_base_at_s(base_, received->second);
+    if (reply.server() != server_) continue;  // another server's probe
     std::lock_guard lock(mutex_);
-    const auto it = tracked_.find(reply->node());
+    const auto it = tracked_.find(reply.node());
     if (it == tracked_.end()) continue;
-    it->second.estimator.add({reply->t1_s(), reply->t2_s(), reply->t3_s(), t4});
+    it->second.estimator.add({reply.t1_s(), reply.t2_s(), reply.t3_s(), t4});
   }
 }
 
