@@ -148,8 +148,8 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
         info.set_participant(record.status.participant());
         std::string holders;
         for (const auto& hold : record.status.holds()) {
-          holders += (holders.empty() ? "" : ", ") + hold.axis() + ": " + hold.server() + " job " +
-                     std::to_string(hold.job_id());
+          holders += (holders.empty() ? "" : ", ") + hold.server() + " (job " + std::to_string(hold.job_id()) +
+                     ", axis " + hold.axis() + ")";
         }
         info.set_held_by(holders);
         if (const auto clock = clocks_.estimate(record.status.node())) {
@@ -191,6 +191,10 @@ void JobService::schedule() {
       it = queue_.erase(it);
       busy_axes_.insert(job->axes.begin(), job->axes.end());
       job->status.set_state("running");
+      std::string axes;
+      for (const auto& axis : job->axes) axes += (axes.empty() ? "" : ",") + axis;
+      std::cout << "netmc-server: job " << job->id << " running on axes " << axes << " (" << running_.size() + 1
+                << " running, " << queue_.size() << " queued)" << std::endl;
       running_.emplace(job->id, std::thread([this, job] {
         run(*job);
         finish(job);
@@ -355,6 +359,7 @@ void JobService::run(Job& job) {
     std::cerr << "netmc-server: job " << job.id << " " << state << ": " << error.what() << std::endl;
   }
   done.set_state(state);
+  std::cout << "netmc-server: job " << job.id << " " << state << std::endl;
   {
     std::lock_guard lock(mutex_);
     job.status.set_state(state);
