@@ -30,6 +30,14 @@ TEST(Interfaces, UnknownNamesAndMalformedAddressesNameTheFlag) {
   }
 }
 
+TEST(TimeBase, APastSystemInstantMapsToEveryBase) {
+  // A reception timestamp 250 ms old, read on each base: that base's now minus 250 ms.
+  const auto past = std::chrono::system_clock::now() - std::chrono::milliseconds(250);
+  for (const TimeBase base : {TimeBase::monotonic, TimeBase::realtime, TimeBase::tai}) {
+    EXPECT_NEAR(time_base_at_s(base, past), time_base_now_s(base) - 0.25, 0.01);
+  }
+}
+
 TEST(TimeBase, ReadsTheKernelClocks) {
   const auto reading = [](clockid_t id) {
     timespec t{};
