@@ -138,14 +138,19 @@ void write_checked(eprosima::fastdds::dds::DataWriter* writer, void* sample);
 // The reception timestamp of a sample as a system_clock time (now, if Fast DDS left it unset).
 std::chrono::system_clock::time_point received_at(const eprosima::fastdds::dds::SampleInfo& info);
 
-// Blocking take of one valid sample with a timeout.
+// Blocking take of one valid sample with a timeout, from one reader or several (a job reads
+// each of its axes' own reader; one WaitSet wakes on any of them).
 template <typename Sample>
 class SampleReader {
  public:
-  explicit SampleReader(eprosima::fastdds::dds::DataReader* reader) : reader_(reader) {
-    auto& condition = reader_->get_statuscondition();
-    condition.set_enabled_statuses(eprosima::fastdds::dds::StatusMask::data_available());
-    waitset_.attach_condition(condition);
+  explicit SampleReader(eprosima::fastdds::dds::DataReader* reader)
+      : SampleReader(std::vector<eprosima::fastdds::dds::DataReader*>{reader}) {}
+  explicit SampleReader(std::vector<eprosima::fastdds::dds::DataReader*> readers) : readers_(std::move(readers)) {
+    for (auto* reader : readers_) {
+      auto& condition = reader->get_statuscondition();
+      condition.set_enabled_statuses(eprosima::fastdds::dds::StatusMask::data_available());
+      waitset_.attach_condition(condition);
+    }
   }
 
   template <typename Rep, typename Period>
@@ -156,19 +161,8 @@ class SampleReader {
 
   // Waits to the microsecond: a realtime cycle's budget is a fraction of a millisecond.
   std::optional<Sample> take_until(std::chrono::steady_clock::time_point deadline) {
-    Sample sample;
-    eprosima::fastdds::dds::SampleInfo info;
-    while (true) {
-      while (reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-        if (info.valid_data) return sample;
-      }
-      const auto left = deadline - std::chrono::steady_clock::now();
-      if (left <= std::chrono::steady_clock::duration::zero()) return std::nullopt;
-      const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(left).count();
-      eprosima::fastdds::dds::ConditionSeq active;
-      waitset_.wait(active, eprosima::fastrtps::Duration_t(static_cast<int32_t>(ns / 1000000000),
-                                                          static_cast<uint32_t>(ns % 1000000000)));
-    }
+    if (auto received = take_until_received(deadline)) return std::move(received->first);
+    return std::nullopt;
   }
 
   // As take_until, with the time Fast DDS received the sample (system clock): stamped on its
@@ -176,12 +170,8 @@ class SampleReader {
   // wake-up of whoever reads them.
   std::optional<std::pair<Sample, std::chrono::system_clock::time_point>> take_until_received(
       std::chrono::steady_clock::time_point deadline) {
-    Sample sample;
-    eprosima::fastdds::dds::SampleInfo info;
     while (true) {
-      while (reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-        if (info.valid_data) return std::make_pair(std::move(sample), received_at(info));
-      }
+      if (auto received = try_take_received()) return received;
       const auto left = deadline - std::chrono::steady_clock::now();
       if (left <= std::chrono::steady_clock::duration::zero()) return std::nullopt;
       const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(left).count();
@@ -192,20 +182,32 @@ class SampleReader {
   }
 
   std::optional<Sample> try_take() {
+    if (auto received = try_take_received()) return std::move(received->first);
+    return std::nullopt;
+  }
+
+  eprosima::fastdds::dds::DataReader* get() const { return readers_.front(); }
+  const std::vector<eprosima::fastdds::dds::DataReader*>& readers() const { return readers_; }
+  // For a WaitSet that waits on several readers at once.
+  eprosima::fastdds::dds::StatusCondition& condition() { return readers_.front()->get_statuscondition(); }
+
+ private:
+  // Round robin over the readers, so that no axis's samples wait behind another's.
+  std::optional<std::pair<Sample, std::chrono::system_clock::time_point>> try_take_received() {
     Sample sample;
     eprosima::fastdds::dds::SampleInfo info;
-    while (reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-      if (info.valid_data) return sample;
+    for (std::size_t tried = 0; tried < readers_.size(); ++tried) {
+      auto* reader = readers_[next_];
+      next_ = (next_ + 1) % readers_.size();
+      while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+        if (info.valid_data) return std::make_pair(std::move(sample), received_at(info));
+      }
     }
     return std::nullopt;
   }
 
-  eprosima::fastdds::dds::DataReader* get() const { return reader_; }
-  // For a WaitSet that waits on several readers at once.
-  eprosima::fastdds::dds::StatusCondition& condition() { return reader_->get_statuscondition(); }
-
- private:
-  eprosima::fastdds::dds::DataReader* reader_;
+  std::vector<eprosima::fastdds::dds::DataReader*> readers_;
+  std::size_t next_ = 0;
   eprosima::fastdds::dds::WaitSet waitset_;
 };
 

@@ -33,23 +33,6 @@ const char* health_name(netmc::dds::NodeHealth health) {
   return "unknown";
 }
 
-// A reader a job makes for itself and removes when it ends.
-template <typename Sample>
-struct JobReader {
-  JobReader(dds::DdsContext& owner, eprosima::fastdds::dds::DataReader* reader) : context(owner) {
-    samples.emplace(reader);
-  }
-  ~JobReader() {
-    auto* reader = samples->get();
-    samples.reset();  // its WaitSet lets go of the reader first
-    context.remove_reader(reader);
-  }
-  JobReader(const JobReader&) = delete;
-  JobReader& operator=(const JobReader&) = delete;
-  dds::DdsContext& context;
-  std::optional<dds::SampleReader<Sample>> samples;
-};
-
 }  // namespace
 
 JobService::JobService(dds::DdsContext& context, NodeDirectory& nodes, ClockTracker& clocks,
@@ -221,6 +204,24 @@ void JobService::finish(const std::shared_ptr<Job>& job) {
   wake_.notify_all();
 }
 
+const JobService::AxisReaders& JobService::axis_readers(bool realtime, const std::string& axis) {
+  // Made on first use and kept, like the setpoint writers: an axis belongs to one job at a time,
+  // and a reader made per job would have to be discovered anew by the node first (over a lossy
+  // network, seconds) before its feedback reaches the job.
+  std::lock_guard lock(writers_mutex_);
+  auto& readers = axis_readers_[{realtime, axis}];
+  if (!readers.feedback) {
+    const std::vector<std::string> partition{dds::partition_of_axis(axis)};
+    readers.feedback = context_.reader(
+        context_.topic<netmc::dds::FeedbackPubSubType>(realtime ? dds::kRealtimeFeedbackTopic
+                                                                : dds::kLockstepFeedbackTopic),
+        realtime ? dds::Delivery::stream : dds::Delivery::exchange, partition);
+    readers.events = context_.reader(context_.topic<netmc::dds::AxisEventPubSubType>(dds::kAxisEventTopic),
+                                     dds::Delivery::control, partition);
+  }
+  return readers;
+}
+
 eprosima::fastdds::dds::DataWriter* JobService::setpoint_writer(bool realtime, const std::string& axis) {
   // One writer per axis and clock, in the axis's partition; made on first use and kept (at most
   // one per axis a node ever hosted: bounded by the lab's axes).
@@ -275,9 +276,14 @@ std::vector<NodeRecord> JobService::find_nodes(const Job& job, const JobChannels
   // The very participants that host the axes must be matched both ways (our control and
   // setpoints, above, to their readers, their feedback and events to ours): an endpoint of a node that
   // died, which DDS still counts for its lease, does not do.
-  if (!context_.wait_for_participants(control_, participants, options_.discovery_timeout) ||
-      !context_.wait_for_participants(channels.feedback->get(), participants, options_.discovery_timeout) ||
-      !context_.wait_for_participants(channels.events->get(), participants, options_.discovery_timeout)) {
+  bool matched = context_.wait_for_participants(control_, participants, options_.discovery_timeout);
+  for (std::size_t axis = 0; matched && axis < participants.size(); ++axis) {
+    matched = context_.wait_for_participants(channels.feedback->readers().at(axis), {participants[axis]},
+                                             options_.discovery_timeout) &&
+              context_.wait_for_participants(channels.events->readers().at(axis), {participants[axis]},
+                                             options_.discovery_timeout);
+  }
+  if (!matched) {
     throw JobFailure("the axis nodes were discovered but their readers did not match within " +
                      std::to_string(options_.discovery_timeout.count()) + " ms");
   }
@@ -293,23 +299,22 @@ void JobService::run(Job& job) {
     if (job.cancel.load()) throw JobFailure("cancelled before it started");
     realtime::tighten_timer_slack();  // this thread sleeps to cycle deadlines
     const bool realtime = job.spec.clock() == "realtime";
-    // This job's own readers, in its axes' partitions: it sees its axes' samples and no others.
-    std::vector<std::string> partitions;
-    for (const auto& axis : job.axes) partitions.push_back(dds::partition_of_axis(axis));
-    JobReader<netmc::dds::Feedback> feedback(
-        context_,
-        context_.reader(context_.topic<netmc::dds::FeedbackPubSubType>(realtime ? dds::kRealtimeFeedbackTopic
-                                                                                : dds::kLockstepFeedbackTopic),
-                        realtime ? dds::Delivery::stream : dds::Delivery::exchange, partitions));
-    JobReader<netmc::dds::AxisEvent> events(
-        context_, context_.reader(context_.topic<netmc::dds::AxisEventPubSubType>(dds::kAxisEventTopic),
-                                  dds::Delivery::control, partitions));
+    // The readers of the job's own axes (each in its axis's partition): the job sees its axes'
+    // samples and no others, and no job waits for discovery of readers made for it.
+    std::vector<eprosima::fastdds::dds::DataReader*> feedback_readers, event_readers;
+    for (const auto& axis : job.axes) {
+      const AxisReaders& readers = axis_readers(realtime, axis);
+      feedback_readers.push_back(readers.feedback);
+      event_readers.push_back(readers.events);
+    }
+    dds::SampleReader<netmc::dds::Feedback> feedback(feedback_readers);
+    dds::SampleReader<netmc::dds::AxisEvent> events(event_readers);
     JobChannels channels;
     channels.server = context_.identity();
     channels.axes = job.axes;
     channels.control = control_;
-    channels.feedback = &*feedback.samples;
-    channels.events = &*events.samples;
+    channels.feedback = &feedback;
+    channels.events = &events;
     channels.iteration_logs = iteration_logs_;
     for (const auto& axis : channels.axes) channels.setpoints.push_back(setpoint_writer(realtime, axis));
     const std::vector<NodeRecord> nodes = find_nodes(job, channels);

@@ -64,14 +64,20 @@ class JobService {
   // The nodes hosting the job's axes, checked against its clock and plant, matched by DDS.
   std::vector<NodeRecord> find_nodes(const Job& job, const JobChannels& channels);
   eprosima::fastdds::dds::DataWriter* setpoint_writer(bool realtime, const std::string& axis);
+  struct AxisReaders {
+    eprosima::fastdds::dds::DataReader* feedback = nullptr;  // the job's clock
+    eprosima::fastdds::dds::DataReader* events = nullptr;
+  };
+  const AxisReaders& axis_readers(bool realtime, const std::string& axis);
 
   dds::DdsContext& context_;
   NodeDirectory& nodes_;
   ClockTracker& clocks_;
   JobServiceOptions options_;
   eprosima::fastdds::dds::DataWriter* control_;
-  std::mutex writers_mutex_;
+  std::mutex writers_mutex_;  // the per-axis endpoints below
   std::map<std::pair<bool, std::string>, eprosima::fastdds::dds::DataWriter*> setpoint_writers_;
+  std::map<std::pair<bool, std::string>, AxisReaders> axis_readers_;
   eprosima::fastdds::dds::DataWriter* iteration_logs_;
 
   std::mutex mutex_;
