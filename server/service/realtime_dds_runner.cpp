@@ -1,6 +1,7 @@
 #include "server/service/realtime_dds_runner.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <thread>
 
 #include "server/job/job_builder.hpp"
@@ -64,7 +65,10 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
   try {
     for (std::uint32_t iteration = 1; iteration <= job_.iterations && !cancel.load(); ++iteration) {
       const Eigen::Vector2d start = server_.begin_iteration(iteration);
-      t0_s_ = dds::time_base_now_s(time_base_) + kStartLeadS;
+      // On the grid of whole periods of the server's clock: the jobs of one server that share a
+      // period then sample in phase, and a node hosting axes of several of them takes all their
+      // samples in one wake-up instead of one each.
+      t0_s_ = std::ceil((dds::time_base_now_s(time_base_) + kStartLeadS) / h) * h;
       const Clock::time_point t0_steady = dds::steady_time_at(time_base_, t0_s_);
       double uncertainty = 0.0;
       for (std::size_t axis = 0; axis < axes; ++axis) {
