@@ -15,6 +15,7 @@
 # Usage: bench/realtime_sweep.sh BUILD_DIR [--seconds S] [--periods "5 2 1 0.5 0.2"]
 #                                [--axis-counts "2 8 16 32"] [--parts "periods rtt axes"]
 #                                [--scheds "normal fifo fifo+poll"] [--rtt-periods "1 0.2"]
+#                                [--layout split|shared]  (periods: x and y in two nodes or one)
 set -euo pipefail
 build=$(cd "$1" && pwd)
 shift
@@ -23,6 +24,7 @@ periods="5 2 1 0.5 0.2"
 axis_counts="2 8 16 32"
 parts="periods rtt axes"
 rtt_periods="1 0.2"
+layout=split
 scheds="normal fifo fifo+poll"
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -32,12 +34,17 @@ while [ $# -gt 0 ]; do
     --parts) parts=$2; shift 2 ;;
     --scheds) scheds=$2; shift 2 ;;
     --rtt-periods) rtt_periods=$2; shift 2 ;;
+    --layout) layout=$2; shift 2 ;;
     *) echo "realtime_sweep.sh: unknown option $1" >&2; exit 2 ;;
   esac
 done
+case "$layout" in split | shared) ;; *) echo "--layout: expected split or shared" >&2; exit 2 ;; esac
 [[ $seconds =~ ^[0-9]+$ ]] || { echo "--seconds: expected whole seconds" >&2; exit 2; }
 for sched in $scheds; do
-  case "$sched" in normal | fifo | fifo+poll) ;; *) echo "--scheds: unknown scheduler $sched (normal, fifo, fifo+poll)" >&2; exit 2 ;; esac
+  case "$sched" in
+    normal | fifo | fifo+poll | fifo+poll+pin | fifo+poll+lock) ;;
+    *) echo "--scheds: unknown scheduler $sched (normal, fifo, fifo+poll, fifo+poll+pin, fifo+poll+lock)" >&2; exit 2 ;;
+  esac
 done
 
 tmp=$(mktemp -d)
@@ -56,13 +63,23 @@ hz=$(getconf CLK_TCK)
 field() { sed -n "s/.*\"$2\": \([-0-9.eE+]*\).*/\1/p" "$1" | head -1; }
 cpu_ticks() { awk '{ print $14 + $15 }' "/proc/$1/stat"; }
 # The schedulers compared: the default one; SCHED_FIFO; SCHED_FIFO with the CPUs kept out of
-# halt (PM QoS wake-up latency 0), which is what a virtual machine's vCPUs need.
+# halt (PM QoS wake-up latency 0), which is what a virtual machine's vCPUs need; that with the
+# server pinned to the last CPU and the nodes to the others (+pin), or with memory locked (+lock).
+# sched_flags SCHED ROLE (ROLE: server or node).
 sched_flags() {
+  local last=$(( $(nproc) - 1 )) flags=""
   case "$1" in
     normal) ;;
-    fifo) echo "--rt-priority 80" ;;
-    fifo+poll) echo "--rt-priority 80 --cpu-latency 0" ;;
+    fifo) flags="--rt-priority 80" ;;
+    fifo+poll) flags="--rt-priority 80 --cpu-latency 0" ;;
+    fifo+poll+pin)
+      flags="--rt-priority 80 --cpu-latency 0"
+      if [ "$last" -gt 0 ]; then
+        [ "$2" = server ] && flags="$flags --cpus $last" || flags="$flags --cpus 0-$((last - 1))"
+      fi ;;
+    fifo+poll+lock) flags="--rt-priority 80 --cpu-latency 0 --lock-memory" ;;
   esac
+  echo "$flags"
 }
 
 # start_cluster SCHED NODE_AXES...: one node per argument (comma-separated axes), one server.
@@ -70,20 +87,21 @@ start_cluster() {
   local sched=$1
   shift
   domain=$((domain + 1))
+  rm -f "$tmp"/node*.log "$tmp/server.log"  # a log of the last cluster would give its port
   local i=0
   for axes in "$@"; do
     "$build/server/axis/netmc-axis" --node "bench$i" --axes "$axes" --clock realtime --domain "$domain" \
-      --transport udp $(sched_flags "$sched") >"$tmp/node$i.log" 2>&1 &
+      --transport udp $(sched_flags "$sched" node) >"$tmp/node$i.log" 2>&1 &
     pids+=($!)
     i=$((i + 1))
   done
   "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
-    $(sched_flags "$sched") >"$tmp/server.log" 2>&1 &
+    $(sched_flags "$sched" server) >"$tmp/server.log" 2>&1 &
   pids+=($!)
   server_pid=$!
   port=""
   for _ in $(seq 100); do
-    port=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/server.log")
+    port=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/server.log" 2>/dev/null || true)
     [ -n "$port" ] && break
     sleep 0.1
   done
@@ -94,7 +112,8 @@ percent() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", (b > 0 ? 100 * a / b
 us() { awk -v v="$1" 'BEGIN { printf "%.0f", v * 1e6 }'; }
 
 if [[ " $parts " == *" periods "* ]]; then
-  echo "## Sample period sweep: 2 axes (x, y in two node processes), ${seconds} s, adrc+ilccc, no netsim delay"
+  if [ "$layout" = shared ]; then nodes=(x,y); where="x,y in one node process"; else nodes=(x y); where="x, y in two node processes"; fi
+  echo "## Sample period sweep: 2 axes ($where), ${seconds} s, adrc+ilccc, no netsim delay"
   echo
   echo "| h | scheduler | cycles | deadline misses | tau p50 | tau p99 | e_max | e_max of netmc sim | ratio |"
   echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
@@ -102,7 +121,7 @@ if [[ " $parts " == *" periods "* ]]; then
     "$build/client/netmc" sim $job --sample-period "${h}ms" --quiet --json "$tmp/sim.json" >/dev/null
     sim_emax=$(field "$tmp/sim.json" e_max_m)
     for sched in $scheds; do
-      start_cluster "$sched" x y
+      start_cluster "$sched" "${nodes[@]}"
       if "$build/client/netmc" run --server "127.0.0.1:$port" --clock realtime $job --sample-period "${h}ms" \
         --quiet --json "$tmp/run.json" >"$tmp/run.log" 2>&1; then
         misses=$(field "$tmp/run.json" deadline_misses)
@@ -124,32 +143,35 @@ fi
 if [[ " $parts " == *" rtt "* ]]; then
   echo "## Round trip: closed loop (feedback written -> setpoint in, on the axis) beside a bare Fast DDS ping-pong, same run"
   echo
-  echo "| h | scheduler | axes | ping-pong p50 | p99 | loop p50 | p99 | p50 ratio | p99 ratio |"
-  echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+  echo "| h | scheduler | axes | ping-pong p50 | p99 | loop p50 | p99 | p50 ratio | p99 ratio | loop's deadline misses |"
+  echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
   for h in $rtt_periods; do
     rate=$(awk -v h="$h" 'BEGIN { printf "%d", 1000 / h }')
     count=$((rate * seconds))
     for sched in $scheds; do
-      for layout in "x,y" "x y"; do
+      for rtt_nodes in "x,y" "x y"; do
         domain=$((domain + 1))
         "$build/bench/netmc_dds_ping_pong" --role pong --domain "$domain" --seconds $((seconds + 15)) \
-          $(sched_flags "$sched") &
+          $(sched_flags "$sched" node) &
         pids+=($!)
         "$build/bench/netmc_dds_ping_pong" --role ping --domain "$domain" --rate "$rate" --count "$count" \
-          $(sched_flags "$sched") >"$tmp/ping.txt"
+          $(sched_flags "$sched" server) >"$tmp/ping.txt"
         stop_all
         read -r pp50 pp99 < <(sed -n 's/.*p50 \([0-9]*\) us, p99 \([0-9]*\) us.*/\1 \2/p' "$tmp/ping.txt")
         # shellcheck disable=SC2086
-        start_cluster "$sched" $layout
+        start_cluster "$sched" $rtt_nodes
+        rm -f "$tmp/run.json"
         "$build/client/netmc" run --server "127.0.0.1:$port" --clock realtime $job --sample-period "${h}ms" \
-          --quiet --json "$tmp/run.json" >/dev/null 2>&1 || true
+          --quiet --json "$tmp/run.json" >"$tmp/run.log" 2>&1 || { echo "--- run:"; tail -2 "$tmp/run.log"; tail -3 "$tmp/server.log"; } >&2
         stop_all
+        misses=$([ -f "$tmp/run.json" ] && field "$tmp/run.json" deadline_misses || echo "job failed")
         # The axes' own round trips (one line per axis): the median of their p50s and the worst p99.
         read -r lp50 lp99 < <(sed -n 's/.*round trip feedback->setpoint p50 \([0-9]*\) us p99 \([0-9]*\) us.*/\1 \2/p' \
           "$tmp"/node*.log | sort -n | awk '{ p50[NR] = $1; if ($2 > p99) p99 = $2 } END { print p50[int((NR + 1) / 2)], p99 }')
-        label=$([ "$layout" = "x,y" ] && echo "x,y in one node" || echo "x, y in two nodes")
+        label=$([ "$rtt_nodes" = "x,y" ] && echo "x,y in one node" || echo "x, y in two nodes")
         echo "| $h ms | $sched | $label | $pp50 µs | $pp99 µs | $lp50 µs | $lp99 µs |" \
-          "$(awk -v a="$lp50" -v b="$pp50" 'BEGIN { printf "%.2f", a / b }') | $(awk -v a="$lp99" -v b="$pp99" 'BEGIN { printf "%.2f", a / b }') |"
+          "$(awk -v a="$lp50" -v b="$pp50" 'BEGIN { printf "%.2f", a / b }') | $(awk -v a="$lp99" -v b="$pp99" 'BEGIN { printf "%.2f", a / b }') |" \
+          "$misses of $(awk -v s="$seconds" -v h="$h" 'BEGIN { printf "%d", s * 1000 / h + 1 }') |"
         rm -f "$tmp"/node*.log
       done
     done
