@@ -50,7 +50,7 @@ RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::
       if (!quiet) {
         std::cerr << fmt::format(
             "  [{}] iteration {}/{}  e_max {:.4f} mm  e_sum {:.3f} mm  tau mean/p99/max {:.3f}/{:.3f}/{:.3f} ms"
-            " (sc {:.3f}, cc {:.3f}, ca {:.3f} ms mean{}){}\n",
+            " (sc {:.3f}, cc {:.3f}, ca {:.3f} ms mean{}){}{}\n",
             label, m.iteration(), response.iteration().total_iterations(), m.e_max_m() * 1e3,
             m.e_sum_m() * 1e3, m.tau_mean_s() * 1e3, m.tau_p99_s() * 1e3, m.tau_max_s() * 1e3,
             m.tau_sc_mean_s() * 1e3, m.tau_cc_mean_s() * 1e3, m.tau_ca_mean_s() * 1e3,
@@ -58,6 +58,9 @@ RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::
             m.clock_uncertainty_s() > 0.0 ? fmt::format(", clocks +-{:.3f} ms", m.clock_uncertainty_s() * 1e3) : "",
             m.lost_feedback() + m.lost_setpoints() > 0
                 ? fmt::format("  lost feedback {} setpoints {}", m.lost_feedback(), m.lost_setpoints())
+                : "",
+            m.deadline_misses() > 0
+                ? fmt::format("  deadline misses {} (late feedback {})", m.deadline_misses(), m.late_feedback())
                 : "");
       }
     } else if (response.has_finished()) {

@@ -513,6 +513,7 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   }
   out.set_deadline_misses(static_cast<std::uint32_t>(m.deadline_misses));
   out.set_lost_feedback(static_cast<std::uint32_t>(m.lost_feedback));
+  out.set_late_feedback(static_cast<std::uint32_t>(m.late_feedback));
   out.set_lost_setpoints(static_cast<std::uint32_t>(m.lost_setpoints));
   out.set_stale_setpoints(static_cast<std::uint32_t>(m.stale_setpoints));
   out.set_diverged(m.diverged);

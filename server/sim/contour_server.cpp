@@ -105,6 +105,7 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
     bool arrived = false;
     for (const auto& delivery : uplinks_[axis].receive_until(deadline)) {
       const auto sequence = static_cast<std::int64_t>(delivery.sequence);
+      if (delivery.sequence < cycle) ++m.late_feedback;  // missed its own deadline
       if (sequence > newest_sequence_[axis]) {
         newest_sequence_[axis] = sequence;
         server_measurement_[static_cast<Eigen::Index>(axis)] = delivery.payload;

@@ -30,6 +30,7 @@ struct IterationMetrics {
   double tau_ca_mean_s = 0.0, tau_ca_p99_s = 0.0, tau_ca_max_s = 0.0;
   std::uint64_t deadline_misses = 0;     // cycles computed without fresh feedback of every axis
   std::uint64_t lost_feedback = 0;
+  std::uint64_t late_feedback = 0;       // came after its cycle's deadline (used later if newest)
   std::uint64_t lost_setpoints = 0;
   std::uint64_t stale_setpoints = 0;     // arrived after a newer one, dropped
   bool diverged = false;                 // the loop went unstable; metrics cover samples before

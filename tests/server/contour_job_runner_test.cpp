@@ -51,6 +51,19 @@ TEST(ContourJobRunner, ConstantDelayLongerThanAPeriodIsAccountedExactly) {
   EXPECT_EQ(m.deadline_misses, 0u);
 }
 
+TEST(ContourJobRunner, FeedbackLaterThanItsDeadlineIsCountedLate) {
+  // Uplink 1.5 periods, deadline one period: every cycle k misses its feedback, which arrives
+  // within cycle k + 1's deadline; the feedback of cycles 0..N-2 of both axes comes late.
+  ContourJob job = small_circle_job();
+  job.uplink.delay = netsim::make_constant_delay(0.0075);
+  ContourJobRunner runner(job);
+  const auto m = runner.run_iteration().metrics;
+  const std::uint64_t cycles = job.cycles();
+  EXPECT_EQ(m.deadline_misses, cycles);
+  EXPECT_EQ(m.late_feedback, 2 * (cycles - 1));
+  EXPECT_EQ(m.lost_feedback, 0u);
+}
+
 TEST(ContourJobRunner, ReorderedSetpointsAreDroppedAsStale) {
   // Delays alternate 12 ms and 1 ms: setpoint k+1 overtakes setpoint k, which must not act.
   ContourJob job = small_circle_job();
