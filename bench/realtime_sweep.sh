@@ -8,12 +8,14 @@
 #   rtt       the loop's round trip (feedback written -> setpoint in, on the axis) beside a bare
 #             Fast DDS ping-pong of the same types and QoS at the same rate, in the same run;
 #   axes      N axes at 1 kHz on one server: N/2 two-axis jobs at once, nodes of up to 8 axes:
-#             misses and CPU per axis (server and nodes, user + system time).
+#             misses and CPU per axis (server and nodes, user + system time);
+#   platform  the machine's own wake-up latency, without netmc: cyclictest (Debian rt-tests),
+#             SCHED_FIFO 80, one thread per CPU, memory locked, CPU wake-up latency 0.
 # Each part runs with each scheduler: normal, fifo (--rt-priority 80: SCHED_FIFO for every
 # process, DDS threads included) and fifo+poll (also --cpu-latency 0).
 #
 # Usage: bench/realtime_sweep.sh BUILD_DIR [--seconds S] [--periods "5 2 1 0.5 0.2"]
-#                                [--axis-counts "2 8 16 32"] [--parts "periods rtt axes"]
+#                                [--axis-counts "2 8 16 32"] [--parts "platform periods rtt axes"]
 #                                [--scheds "normal fifo fifo+poll"] [--rtt-periods "1 0.2"]
 #                                [--layout split|shared]  (periods: x and y in two nodes or one)
 set -euo pipefail
@@ -22,7 +24,7 @@ shift
 seconds=10
 periods="5 2 1 0.5 0.2"
 axis_counts="2 8 16 32"
-parts="periods rtt axes"
+parts="platform periods rtt axes"
 rtt_periods="1 0.2"
 layout=split
 scheds="normal fifo fifo+poll"
@@ -110,6 +112,19 @@ start_cluster() {
 
 percent() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", (b > 0 ? 100 * a / b : 0) }'; }
 us() { awk -v v="$1" 'BEGIN { printf "%.0f", v * 1e6 }'; }
+
+if [[ " $parts " == *" platform "* ]]; then
+  echo "## This machine's wake-up latency: cyclictest -m -S -p 80 -i 1000 -D ${seconds}s (no netmc running)"
+  echo
+  if command -v cyclictest >/dev/null; then
+    echo '```'
+    cyclictest -m -S -p 80 -i 1000 -D "${seconds}s" -q 2>&1 | tail -n +2
+    echo '```'
+  else
+    echo "cyclictest not found (Debian package rt-tests)"
+  fi
+  echo
+fi
 
 if [[ " $parts " == *" periods "* ]]; then
   if [ "$layout" = shared ]; then nodes=(x,y); where="x,y in one node process"; else nodes=(x y); where="x, y in two node processes"; fi
