@@ -57,16 +57,20 @@ class DelayedChannel {
   // All arrivals with arrival_time <= time_s, sorted by (arrival_time, sequence), removed from
   // flight. time_s = +inf drains the channel; NaN throws std::invalid_argument.
   std::vector<Delivery> receive_until(double time_s) {
+    std::vector<Delivery> arrived;
+    receive_until(time_s, arrived);
+    return arrived;
+  }
+  // The same into `arrived` (cleared first): a loop that keeps one buffer allocates nothing.
+  void receive_until(double time_s, std::vector<Delivery>& arrived) {
     if (std::isnan(time_s)) {
       throw std::invalid_argument("delayed channel: time_s must be a time in s (got nan)");
     }
     const auto first_pending = std::find_if(in_flight_.begin(), in_flight_.end(),
                                             [time_s](const Delivery& d) { return d.arrival_time_s > time_s; });
-    std::vector<Delivery> arrived(std::make_move_iterator(in_flight_.begin()),
-                                  std::make_move_iterator(first_pending));
+    arrived.assign(std::make_move_iterator(in_flight_.begin()), std::make_move_iterator(first_pending));
     in_flight_.erase(in_flight_.begin(), first_pending);
     counters_.delivered += arrived.size();
-    return arrived;
   }
 
   std::optional<double> next_arrival_s() const {

@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "plant/smooth_sign.hpp"
+
 #include "plant/parameter_checks.hpp"
 #include "plant/rk4_integrator.hpp"
 
@@ -63,7 +65,7 @@ double LinearMotorAxis::friction_force(double velocity) const {
     const double r = velocity / p_.stribeck_velocity;
     level += p_.stribeck_extra * std::exp(-r * r);
   }
-  return level * std::tanh(velocity / p_.friction_smoothing_velocity);
+  return level * smooth_sign(velocity / p_.friction_smoothing_velocity);
 }
 
 double LinearMotorAxis::cogging_force(double position) const {

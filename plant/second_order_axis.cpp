@@ -6,6 +6,7 @@
 
 #include "plant/parameter_checks.hpp"
 #include "plant/rk4_integrator.hpp"
+#include "plant/smooth_sign.hpp"
 
 namespace netmc::plant {
 namespace {
@@ -53,11 +54,11 @@ void SecondOrderAxis::advance_piece(double t0, double duration, double input, do
   if (smooth_part_is_constant(d)) {
     const double w = forcing + smooth_part(d, t0);
     rk4_second_order(x, v, t0, duration, n, [&](double, double xx, double vv) {
-      return a1 * xx + a2 * vv + w - c * std::tanh(vv * inv_scale);
+      return a1 * xx + a2 * vv + w - c * smooth_sign(vv * inv_scale);
     });
   } else {
     rk4_second_order(x, v, t0, duration, n, [&](double t, double xx, double vv) {
-      return a1 * xx + a2 * vv + forcing + smooth_part(d, t) - c * std::tanh(vv * inv_scale);
+      return a1 * xx + a2 * vv + forcing + smooth_part(d, t) - c * smooth_sign(vv * inv_scale);
     });
   }
   state() << x, v;

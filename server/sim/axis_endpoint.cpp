@@ -38,13 +38,12 @@ bool AxisEndpoint::submit_setpoint(double send_time_s, std::uint64_t sequence, d
   return delivered;
 }
 
-std::vector<AppliedSetpoint> AxisEndpoint::advance_to(double end_time_s) {
-  const auto deliveries = downlink_.receive_until(end_time_s);
-  axis_.advance_to(end_time_s, deliveries);
-  std::vector<AppliedSetpoint> applied;
-  applied.reserve(deliveries.size());
-  for (const auto& d : deliveries) applied.push_back({d.sequence, d.send_time_s, d.arrival_time_s});
-  return applied;
+const std::vector<AppliedSetpoint>& AxisEndpoint::advance_to(double end_time_s) {
+  downlink_.receive_until(end_time_s, deliveries_);
+  axis_.advance_to(end_time_s, deliveries_);
+  applied_.clear();
+  for (const auto& d : deliveries_) applied_.push_back({d.sequence, d.send_time_s, d.arrival_time_s});
+  return applied_;
 }
 
 }  // namespace netmc::sim

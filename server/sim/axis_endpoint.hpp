@@ -38,8 +38,9 @@ class AxisEndpoint {
   AxisSample sample();
   // Setpoint `sequence` leaves the server at `send_time_s`; false if the downlink drops it.
   bool submit_setpoint(double send_time_s, std::uint64_t sequence, double command);
-  // Integrate to `end_time_s`, applying the setpoints that arrive on the way.
-  std::vector<AppliedSetpoint> advance_to(double end_time_s);
+  // Integrate to `end_time_s`, applying the setpoints that arrive on the way; the result is
+  // valid until the next call (one buffer, no allocation per cycle).
+  const std::vector<AppliedSetpoint>& advance_to(double end_time_s);
 
   void hold() { axis_.hold(); }
 
@@ -49,6 +50,8 @@ class AxisEndpoint {
  private:
   SimulatedAxis axis_;
   netsim::DelayedChannel<double> downlink_;
+  std::vector<netsim::DelayedChannel<double>::Delivery> deliveries_;
+  std::vector<AppliedSetpoint> applied_;
   std::uint64_t seed_;
   std::size_t index_;
   std::uint64_t lost_ = 0;

@@ -103,7 +103,8 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   double last_arrival = t;
   for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
     bool arrived = false;
-    for (const auto& delivery : uplinks_[axis].receive_until(deadline)) {
+    uplinks_[axis].receive_until(deadline, arrived_);
+    for (const auto& delivery : arrived_) {
       const auto sequence = static_cast<std::int64_t>(delivery.sequence);
       if (delivery.sequence < cycle) ++m.late_feedback;  // missed its own deadline
       if (sequence > newest_sequence_[axis]) {

@@ -51,6 +51,7 @@ class ContourServer {
   ContourJob job_;
   std::unique_ptr<control::ContourController> controller_;
   std::vector<netsim::DelayedChannel<double>> uplinks_;
+  std::vector<netsim::DelayedChannel<double>::Delivery> arrived_;  // one cycle's, reused
   std::size_t cycles_;
   double evaluation_start_;
 
