@@ -110,6 +110,14 @@ start_cluster() {
   [ -n "$port" ] || { echo "netmc-server did not start" >&2; cat "$tmp/server.log" >&2; exit 1; }
 }
 
+# section TITLE COLUMN...: a markdown heading and the head of its table.
+section() {
+  local title=$1 head="|" rule="|"
+  shift
+  for column in "$@"; do head="$head $column |"; rule="$rule --- |"; done
+  printf '## %s\n\n%s\n%s\n' "$title" "$head" "$rule"
+}
+
 percent() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", (b > 0 ? 100 * a / b : 0) }'; }
 us() { awk -v v="$1" 'BEGIN { printf "%.0f", v * 1e6 }'; }
 
@@ -128,10 +136,8 @@ fi
 
 if [[ " $parts " == *" periods "* ]]; then
   if [ "$layout" = shared ]; then nodes=(x,y); where="x,y in one node process"; else nodes=(x y); where="x, y in two node processes"; fi
-  echo "## Sample period sweep: 2 axes ($where), ${seconds} s, adrc+ilccc, no netsim delay"
-  echo
-  echo "| h | scheduler | cycles | deadline misses | tau p50 | tau p99 | e_max | e_max of netmc sim | ratio |"
-  echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+  section "Sample period sweep: 2 axes ($where), ${seconds} s, adrc+ilccc, no netsim delay" \
+    h scheduler cycles "deadline misses" "tau p50" "tau p99" e_max "e_max of netmc sim" ratio
   for h in $periods; do
     "$build/client/netmc" sim $job --sample-period "${h}ms" --quiet --json "$tmp/sim.json" >/dev/null
     sim_emax=$(field "$tmp/sim.json" e_max_m)
@@ -156,10 +162,8 @@ if [[ " $parts " == *" periods "* ]]; then
 fi
 
 if [[ " $parts " == *" rtt "* ]]; then
-  echo "## Round trip: closed loop (feedback written -> setpoint in, on the axis) beside a bare Fast DDS ping-pong, same run"
-  echo
-  echo "| h | scheduler | axes | ping-pong p50 | p99 | loop p50 | p99 | p50 ratio | p99 ratio | loop's deadline misses |"
-  echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+  section "Round trip: closed loop (feedback written -> setpoint in, on the axis) beside a bare Fast DDS ping-pong, same run" \
+    h scheduler axes "ping-pong p50" p99 "loop p50" p99 "p50 ratio" "p99 ratio" "loop's deadline misses"
   for h in $rtt_periods; do
     rate=$(awk -v h="$h" 'BEGIN { printf "%d", 1000 / h }')
     count=$((rate * seconds))
@@ -195,10 +199,8 @@ if [[ " $parts " == *" rtt "* ]]; then
 fi
 
 if [[ " $parts " == *" axes "* ]]; then
-  echo "## Axes on one server at 1 kHz: two-axis jobs at once, nodes of up to 8 axes, ${seconds} s"
-  echo
-  echo "| axes | jobs | nodes | scheduler | cycles | deadline misses | worst job | CPU per axis (server + nodes) |"
-  echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
+  section "Axes on one server at 1 kHz: two-axis jobs at once, nodes of up to 8 axes, ${seconds} s" \
+    axes jobs nodes scheduler cycles "deadline misses" "worst job" "CPU per axis (server + nodes)"
   for n in $axis_counts; do
     nodes=()
     for ((first = 0; first < n; first += 8)); do
