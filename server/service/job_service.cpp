@@ -8,6 +8,7 @@
 #include "server/dds/topics.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/realtime/realtime_scheduling.hpp"
+#include "server/service/job_admission.hpp"
 #include "server/service/lockstep_dds_runner.hpp"
 #include "server/service/realtime_dds_runner.hpp"
 
@@ -161,17 +162,13 @@ void JobService::schedule() {
     for (auto& thread : finished_) thread.join();
     finished_.clear();
     if (stopping_) break;
-    std::set<std::string> claimed = busy_axes_;
-    for (auto it = queue_.begin(); it != queue_.end();) {
-      const auto job = *it;
-      const bool free = std::none_of(job->axes.begin(), job->axes.end(),
-                                     [&](const std::string& axis) { return claimed.count(axis) > 0; });
-      claimed.insert(job->axes.begin(), job->axes.end());
-      if (!free || running_.size() >= options_.max_running_jobs) {
-        ++it;
-        continue;
-      }
-      it = queue_.erase(it);
+    std::vector<std::vector<std::string>> queued;
+    for (const auto& job : queue_) queued.push_back(job->axes);
+    const auto start = admissible_jobs(queued, busy_axes_, running_.size(), options_.max_running_jobs);
+    std::vector<std::shared_ptr<Job>> starting;
+    for (const std::size_t index : start) starting.push_back(queue_[index]);
+    for (const auto& job : starting) {
+      queue_.erase(std::find(queue_.begin(), queue_.end(), job));
       busy_axes_.insert(job->axes.begin(), job->axes.end());
       job->status.set_state("running");
       std::string axes;
