@@ -22,15 +22,18 @@ void LockstepAxisNode::serve(const std::atomic<bool>& stop) {
     while (auto control = link_.control().try_take()) handle(*control);
     while (auto setpoint = link_.setpoints().try_take()) handle(*setpoint);
     if (std::chrono::steady_clock::now() - last_status >= kStatusPeriod) {
-      bool running = false;
-      for (const auto& [name, axis] : axes_) running = running || axis.endpoint != nullptr;
-      link_.publish_status(running ? netmc::dds::NODE_RUNNING : netmc::dds::NODE_IDLE,
-                           running ? "running a job" : "ready");
+      publish_status();
       last_status = std::chrono::steady_clock::now();
     }
     eprosima::fastdds::dds::ConditionSeq active;
     waitset.wait(active, eprosima::fastrtps::Duration_t(0, 100'000'000));
   }
+}
+
+void LockstepAxisNode::publish_status() {
+  bool running = false;
+  for (const auto& [name, axis] : axes_) running = running || axis.endpoint != nullptr;
+  link_.publish_status(running ? netmc::dds::NODE_RUNNING : netmc::dds::NODE_IDLE, running ? "running a job" : "ready");
 }
 
 void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
@@ -74,6 +77,7 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
     case netmc::dds::CONTROL_END_JOB:
       axis.endpoint.reset();
       link_.release(control.axis(), control.server(), control.job_id());
+      publish_status();  // at once: a server deciding on these axes must not see a stale hold
       return;
   }
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());

@@ -19,6 +19,7 @@ class LockstepAxisNode {
 
  private:
   void handle(const netmc::dds::JobControl& control);
+  void publish_status();
   void handle(const netmc::dds::Setpoint& setpoint);
 
   AxisNodeLink link_;

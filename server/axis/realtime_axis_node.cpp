@@ -141,6 +141,7 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
         axis.ending = false;
         axis.holding = false;
         link_.release(control.axis(), control.server(), control.job_id());
+        publish_status();  // at once: a server deciding on these axes must not see a stale hold
       }
       return;
   }
