@@ -113,7 +113,8 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
       axis.samples = 0;
       axis.commands_received = 0;
       axis.server_send_times.clear();
-      axis.feedback_sent.clear();
+      axis.feedback_sent.assign(axis.cycles, Clock::time_point{});
+      axis.newest_timed = -1;
       axis.round_trips_s.clear();
       axis.wake_late_s.clear();
       axis.round_trips_s.reserve(axis.cycles);
@@ -166,9 +167,10 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
     return;
   }
   const auto arrived = Clock::now();
-  if (const auto sent = axis.feedback_sent.find(setpoint.cycle()); sent != axis.feedback_sent.end()) {
-    axis.round_trips_s.push_back(std::chrono::duration<double>(arrived - sent->second).count());
-    axis.feedback_sent.erase(axis.feedback_sent.begin(), std::next(sent));
+  const auto cycle = static_cast<std::int64_t>(setpoint.cycle());
+  if (cycle > axis.newest_timed && axis.feedback_sent[setpoint.cycle()] != Clock::time_point{}) {
+    axis.round_trips_s.push_back(std::chrono::duration<double>(arrived - axis.feedback_sent[setpoint.cycle()]).count());
+    axis.newest_timed = cycle;
   }
   // The setpoint leaves for the actuator now: netsim's downlink delay starts here.
   const double now = link_.now_s() - axis.start_time_s;
@@ -218,7 +220,7 @@ void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clo
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
   feedback.stale_setpoints(axis.endpoint->stale_setpoints());
   link_.publish(feedback);
-  axis.feedback_sent.emplace_hint(axis.feedback_sent.end(), k, Clock::now());
+  axis.feedback_sent[k] = Clock::now();
   ++axis.samples;
   ++axis.next_cycle;
   if (axis.next_cycle < axis.cycles) schedule(axis);

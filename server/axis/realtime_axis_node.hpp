@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <vector>
@@ -47,8 +48,11 @@ class RealtimeAxisNode {
     // Server departure time of each setpoint in flight: tau_ca then includes the real DDS
     // latency, not only the emulated part that starts when the sample reaches this node.
     std::map<std::uint64_t, double> server_send_times;
-    // Round trip of the loop on this node's clock: feedback k written -> setpoint k in.
-    std::map<std::uint64_t, Clock::time_point> feedback_sent;
+    // Round trip of the loop on this node's clock: feedback k written -> setpoint k in. By
+    // cycle, sized once per iteration (nothing allocated in a cycle); a setpoint older than the
+    // newest one timed is not timed.
+    std::vector<Clock::time_point> feedback_sent;
+    std::int64_t newest_timed = -1;
     std::vector<double> round_trips_s;
     std::vector<double> wake_late_s;  // how late each sample was taken after its due time
   };

@@ -359,11 +359,8 @@ DataReader* DdsContext::reader(Topic* topic, Delivery delivery, const std::vecto
 
 void DdsContext::remove_reader(DataReader* reader) {
   std::lock_guard lock(entities_mutex_);
-  auto* subscriber = const_cast<Subscriber*>(reader->get_subscriber());
-  subscriber->delete_datareader(reader);
+  const_cast<Subscriber*>(reader->get_subscriber())->delete_datareader(reader);
   trackers_.erase(reader);
-  // A partitioned reader came with a subscriber of its own (reader()): it goes too.
-  if (subscriber != subscriber_ && !subscriber->has_datareaders()) participant_->delete_subscriber(subscriber);
 }
 
 bool DdsContext::matches_participants(const DomainEntity* endpoint,

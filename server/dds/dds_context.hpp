@@ -82,7 +82,8 @@ class DdsContext {
   eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::Topic* topic, Delivery delivery,
                                              const std::vector<std::string>& partitions = {});
 
-  // Deletes a reader made by reader() that is no longer needed (its samples, its matches).
+  // Deletes a reader made by reader() without partitions that is no longer needed (its samples,
+  // its matches); partitioned readers are kept for the process's life (JobService).
   void remove_reader(eprosima::fastdds::dds::DataReader* reader);
 
   std::string describe_transport() const { return transport_description_; }

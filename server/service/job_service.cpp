@@ -205,7 +205,7 @@ const JobService::AxisReaders& JobService::axis_readers(bool realtime, const std
   // Made on first use and kept, like the setpoint writers: an axis belongs to one job at a time,
   // and a reader made per job would have to be discovered anew by the node first (over a lossy
   // network, seconds) before its feedback reaches the job.
-  std::lock_guard lock(writers_mutex_);
+  std::lock_guard lock(endpoints_mutex_);
   auto& readers = axis_readers_[{realtime, axis}];
   if (!readers.feedback) {
     const std::vector<std::string> partition{dds::partition_of_axis(axis)};
@@ -222,7 +222,7 @@ const JobService::AxisReaders& JobService::axis_readers(bool realtime, const std
 eprosima::fastdds::dds::DataWriter* JobService::setpoint_writer(bool realtime, const std::string& axis) {
   // One writer per axis and clock, in the axis's partition; made on first use and kept (at most
   // one per axis a node ever hosted: bounded by the lab's axes).
-  std::lock_guard lock(writers_mutex_);
+  std::lock_guard lock(endpoints_mutex_);
   auto& writer = setpoint_writers_[{realtime, axis}];
   if (!writer) {
     writer = context_.writer(context_.topic<netmc::dds::SetpointPubSubType>(

@@ -75,7 +75,7 @@ class JobService {
   ClockTracker& clocks_;
   JobServiceOptions options_;
   eprosima::fastdds::dds::DataWriter* control_;
-  std::mutex writers_mutex_;  // the per-axis endpoints below
+  std::mutex endpoints_mutex_;  // the per-axis endpoints below
   std::map<std::pair<bool, std::string>, eprosima::fastdds::dds::DataWriter*> setpoint_writers_;
   std::map<std::pair<bool, std::string>, AxisReaders> axis_readers_;
   eprosima::fastdds::dds::DataWriter* iteration_logs_;
