@@ -91,12 +91,6 @@ std::function<int()> add_run_command(CLI::App& app) {
   add_study_flags(run, flags->study);
   return [flags]() -> int {
     const StudyPlan plan = plan_from_flags(flags->study);
-    for (const auto& spec : plan.jobs) {
-      if (job::is_spatial_job(spec)) {
-        throw std::invalid_argument("a three-axis contour (spatial_circle) runs in-process only: use netmc sim; "
-                                    "netmc-server runs two-axis contour groups");
-      }
-    }
     management::ManagementClient client(flags->server, kServerConnectTimeout);
     std::vector<RunOutcome> outcomes;
     std::uint64_t request_id = 1;

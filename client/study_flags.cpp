@@ -140,11 +140,7 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
                             !f.axes.empty();
     for (const auto& job : plan.jobs) {
       try {
-        if (job::is_spatial_job(job)) {
-          job::build_spatial_job(job);
-        } else {
-          job::build_contour_job(job);
-        }
+        job::build_contour_job(job);
       } catch (const std::invalid_argument& error) {
         throw std::invalid_argument(f.spec_file + (overridden ? " (with the flags given): " : ": ") + error.what());
       }
@@ -159,8 +155,8 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
                   "Distributed runs: lockstep (virtual time, equals sim) or realtime (wall clock)")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
   app->add_option("--axes", flags.axes,
-                  "Distributed runs: the axis names (netmc-axis --axes) that the contour's x and y "
-                  "drive, e.g. stage1.x,stage1.y (default x,y)")
+                  "Distributed runs: the axis names (netmc-axis --axes) that the contour's x, y (and z) "
+                  "drive, e.g. stage1.x,stage1.y (default x,y; x,y,z for a contour in space)")
       ->type_name("X,Y");
   app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty, thesis-ellipse, thesis-circle, thesis-darc, thesis-ellipse-delay, thesis-spatial");
   app->add_option("--spec", flags.spec_file, "Job spec as JSON (protobuf JSON mapping of netmc.v1.JobSpec)");

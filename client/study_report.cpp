@@ -179,17 +179,33 @@ std::string study_json(const std::vector<RunOutcome>& outcomes) {
 }
 
 std::string trace_csv(const std::vector<sim::CycleTrace>& trace) {
-  std::string csv =
-      "time_s,x_ref_m,y_ref_m,x_m,y_m,x_measured_m,y_measured_m,contour_error_m,"
-      "contour_error_estimate_m,ux,uy,Ux,Uy,ue,tau_x_s\n";
+  // Columns per axis of the group, named by the contour's coordinates x, y (, z).
+  const std::size_t axes = trace.empty() ? 2 : static_cast<std::size_t>(trace.front().position_m.size());
+  const auto columns = [&](const char* prefix, const char* suffix) {
+    std::string text;
+    for (std::size_t i = 0; i < axes; ++i) {
+      text += i < 3 ? fmt::format(",{}{}{}", prefix, "xyz"[i], suffix) : fmt::format(",{}q{}{}", prefix, i + 1, suffix);
+    }
+    return text;
+  };
+  std::string csv = "time_s" + columns("", "_ref_m") + columns("", "_m") + columns("", "_measured_m") +
+                    ",contour_error_m,contour_error_estimate_m" + columns("u", "") + columns("U", "") +
+                    ",ue,tau_x_s\n";
+  const auto values = [&](const control::AxisVector& v, const char* format) {
+    for (std::size_t i = 0; i < axes; ++i) {
+      csv += ',';
+      csv += fmt::format(fmt::runtime(format), v[static_cast<Eigen::Index>(i)]);
+    }
+  };
   for (const auto& row : trace) {
-    csv += fmt::format("{:.6f},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},"
-                       "{:.6e},{:.6e},{:.6e},{:.6e}\n",
-                       row.time_s, row.reference_m[0], row.reference_m[1], row.position_m[0],
-                       row.position_m[1], row.measured_m[0], row.measured_m[1],
-                       row.contour_error_m, row.contour_error_estimate_m, row.axis_command[0],
-                       row.axis_command[1], row.command[0], row.command[1],
-                       row.coupling_command, row.tau_s);
+    csv += fmt::format("{:.6f}", row.time_s);
+    values(row.reference_m, "{:.9e}");
+    values(row.position_m, "{:.9e}");
+    values(row.measured_m, "{:.9e}");
+    csv += fmt::format(",{:.6e},{:.6e}", row.contour_error_m, row.contour_error_estimate_m);
+    values(row.axis_command, "{:.6e}");
+    values(row.command, "{:.6e}");
+    csv += fmt::format(",{:.6e},{:.6e}\n", row.coupling_command, row.tau_s);
   }
   return csv;
 }

@@ -8,21 +8,15 @@
 
 #include "server/job/job_builder.hpp"
 #include "server/sim/contour_job_runner.hpp"
-#include "server/sim/spatial_job_runner.hpp"
 
 namespace netmc::cli {
 
 std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_traces,
                                              unsigned worker_threads,
                                              const std::function<void()>& on_iteration) {
-  // Every job is built (and so checked) before any runs; three-axis jobs have their own runner.
+  // Every job is built (and so checked) before any runs.
   std::vector<std::optional<sim::ContourJob>> jobs(plan.jobs.size());
-  std::vector<std::optional<sim::SpatialJob>> spatial_jobs(plan.jobs.size());
   for (std::size_t i = 0; i < plan.jobs.size(); ++i) {
-    if (job::is_spatial_job(plan.jobs[i])) {
-      spatial_jobs[i] = job::build_spatial_job(plan.jobs[i]);
-      continue;
-    }
     jobs[i] = job::build_contour_job(plan.jobs[i]);
     jobs[i]->record_traces = record_traces;
   }
@@ -35,13 +29,6 @@ std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_
       try {
         const auto& spec = plan.jobs[i];
         RunOutcome& out = outcomes[i];
-        if (spatial_jobs[i]) {
-          sim::SpatialJobRunner runner(std::move(*spatial_jobs[i]));
-          out.result = job::describe_run(spec, runner.controller_description());
-          *out.result.add_iterations() = job::to_proto(runner.run());
-          if (on_iteration) on_iteration();
-          continue;
-        }
         sim::ContourJobRunner runner(std::move(*jobs[i]));
         out.result = job::describe_run(spec, runner.controller_description());
         runner.run_all([&](const sim::IterationRecord& record) {

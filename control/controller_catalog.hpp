@@ -11,6 +11,7 @@
 #include "control/iterative_learning_cross_coupling.hpp"
 #include "control/pid_axis_controller.hpp"
 #include "control/pid_cross_coupling.hpp"
+#include "control/spatial_sarc.hpp"
 #include "control/task_space_adrc.hpp"
 #include "control/task_space_darc.hpp"
 #include "control/task_space_diarc.hpp"
@@ -30,6 +31,7 @@ struct ControllerSettings {
   GtcfAdrcGains gtcf_adrc;
   DarcGains darc;
   DiarcGains diarc;
+  SpatialSarcGains spatial_sarc;  // three-axis GTCF-SARC (thesis ch. 6)
   // Thesis eq. 2-67, for the task-space controllers in the global frame (gtcf-*).
   InitializationFilterSettings initialization_filter;
   // How the local-frame controllers (ltcf-*) differentiate their error.

@@ -12,7 +12,8 @@ namespace netmc::control {
 SpatialCircle::SpatialCircle(const SpatialCircleParameters& p)
     : center_(p.center),
       radius_(require_positive(p.radius_m, "spatial circle radius")),
-      rate_(2.0 * std::numbers::pi / require_positive(p.period_s, "spatial circle period")) {
+      rate_(2.0 * std::numbers::pi / require_positive(p.period_s, "spatial circle period")),
+      period_s_(p.period_s) {
   if (!(p.normal.norm() > 0.0)) throw std::invalid_argument("spatial circle normal: expected a non-zero vector");
   normal_ = p.normal.normalized();
   const Eigen::Vector3d in_plane = p.start - p.start.dot(normal_) * normal_;

@@ -45,11 +45,13 @@ class SpatialCircle {
   // Undefined on the normal line through the centre (throws std::invalid_argument there).
   SpatialTaskCoordinates at(const Eigen::Vector3d& q) const;
   double perimeter_m() const;
+  double period_s() const { return period_s_; }  // one revolution
   std::string describe() const;
 
  private:
   Eigen::Vector3d center_, normal_, first_, second_;  // first_, second_: in-plane basis
   double radius_, rate_;                              // rate_: rad/s
+  double period_s_;
 };
 
 }  // namespace netmc::control

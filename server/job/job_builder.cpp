@@ -17,6 +17,7 @@
 #include "control/line_trajectory.hpp"
 #include "control/lissajous_trajectory.hpp"
 #include "control/polyline_trajectory.hpp"
+#include "control/spatial_circle.hpp"
 #include "plant/plant_catalog.hpp"
 
 namespace netmc::job {
@@ -115,9 +116,7 @@ std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1:
       return std::make_shared<control::FeedRateTrajectory>(std::move(curve), build_feed(s.feed()));
     }
     case netmc::v1::Trajectory::kSpatialCircle:
-      throw std::invalid_argument(
-          "trajectory.spatial_circle: a three-axis contour runs in-process only (netmc sim), "
-          "not on the two-axis contour groups of netmc-server");
+      throw std::invalid_argument("trajectory.spatial_circle: a three-axis contour, not a planar trajectory");
     case netmc::v1::Trajectory::SHAPE_NOT_SET:
       break;
   }
@@ -131,6 +130,31 @@ std::shared_ptr<const control::ReferenceTrajectory> build_trajectory(
   if (!t.has_halt()) return motion;
   return std::make_shared<control::HaltedTrajectory>(std::move(motion), t.halt().at_s(),
                                                      t.halt().duration_s());
+}
+
+std::shared_ptr<const control::SpatialCircle> build_spatial_circle(const netmc::v1::JobSpec& spec) {
+  const auto& c = spec.trajectory().spatial_circle();
+  if (spec.trajectory().has_halt()) {
+    throw std::invalid_argument("trajectory.spatial_circle: a halt is planar only; expected none");
+  }
+  if (!(c.revolutions() >= 0.0) || !std::isfinite(c.revolutions()) || c.revolutions() > 1e6) {
+    throw std::invalid_argument("trajectory.spatial_circle.revolutions: expected 0 (4) or a positive number up to 1e6");
+  }
+  control::SpatialCircleParameters p;
+  p.center = Eigen::Vector3d(c.center_x_m(), c.center_y_m(), c.center_z_m());
+  p.radius_m = c.radius_m();
+  p.normal = Eigen::Vector3d(c.normal_x(), c.normal_y(), c.normal_z());
+  p.start = Eigen::Vector3d(c.start_x(), c.start_y(), c.start_z());
+  p.period_s = c.period_s();
+  if (!p.center.allFinite() || !p.normal.allFinite() || !p.start.allFinite() || !std::isfinite(p.radius_m) ||
+      !std::isfinite(p.period_s)) {
+    throw std::invalid_argument("trajectory.spatial_circle: expected finite numbers");
+  }
+  try {
+    return std::make_shared<control::SpatialCircle>(p);
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(std::string("trajectory.spatial_circle: ") + error.what());
+  }
 }
 
 std::unique_ptr<netsim::DelayModel> build_delay(const DelayProfile& d) {
@@ -269,14 +293,21 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
     return has;
   };
   // One Lambda and K for every task-space controller that has them (SARC, DARC, DIARC).
+  // Three-axis GTCF-SARC: both contour coordinates [rc1, rc2] take the contour gains.
   if (positive(t.has_lambda_c(), t.lambda_c(), "lambda_c")) {
     s.sarc.lambda[0] = s.darc.lambda[0] = s.diarc.lambda[0] = t.lambda_c();
+    s.spatial_sarc.lambda[0] = s.spatial_sarc.lambda[1] = t.lambda_c();
   }
   if (positive(t.has_lambda_m(), t.lambda_m(), "lambda_m")) {
-    s.sarc.lambda[1] = s.darc.lambda[1] = s.diarc.lambda[1] = t.lambda_m();
+    s.sarc.lambda[1] = s.darc.lambda[1] = s.diarc.lambda[1] = s.spatial_sarc.lambda[2] = t.lambda_m();
   }
-  if (positive(t.has_k_c(), t.k_c(), "k_c")) s.sarc.feedback[0] = s.darc.feedback[0] = s.diarc.feedback[0] = t.k_c();
-  if (positive(t.has_k_m(), t.k_m(), "k_m")) s.sarc.feedback[1] = s.darc.feedback[1] = s.diarc.feedback[1] = t.k_m();
+  if (positive(t.has_k_c(), t.k_c(), "k_c")) {
+    s.sarc.feedback[0] = s.darc.feedback[0] = s.diarc.feedback[0] = t.k_c();
+    s.spatial_sarc.feedback[0] = s.spatial_sarc.feedback[1] = t.k_c();
+  }
+  if (positive(t.has_k_m(), t.k_m(), "k_m")) {
+    s.sarc.feedback[1] = s.darc.feedback[1] = s.diarc.feedback[1] = s.spatial_sarc.feedback[2] = t.k_m();
+  }
   if (t.ltcf_rotation()) s.local_frame_rate = control::LocalFrameRate::rotating;
   return s;
 }
@@ -308,14 +339,21 @@ void check_name(const std::string& name, const std::string& field) {
 }
 
 std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec) {
-  if (spec.axes_size() == 0) return {"x", "y"};
-  if (spec.axes_size() != 2) {
-    throw std::invalid_argument("axes: a two-axis contour needs two axis names, got " +
-                                std::to_string(spec.axes_size()));
+  const std::size_t count = is_spatial_job(spec) ? 3 : 2;
+  if (spec.axes_size() == 0) {
+    return count == 3 ? std::vector<std::string>{"x", "y", "z"} : std::vector<std::string>{"x", "y"};
+  }
+  if (static_cast<std::size_t>(spec.axes_size()) != count) {
+    throw std::invalid_argument("axes: a " + std::to_string(count) + "-axis contour needs " + std::to_string(count) +
+                                " axis names, got " + std::to_string(spec.axes_size()));
   }
   std::vector<std::string> names(spec.axes().begin(), spec.axes().end());
-  for (const auto& name : names) check_name(name, "axes");
-  if (names[0] == names[1]) throw std::invalid_argument("axes: the two axis names must differ, got '" + names[0] + "' twice");
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    check_name(names[i], "axes");
+    for (std::size_t j = 0; j < i; ++j) {
+      if (names[i] == names[j]) throw std::invalid_argument("axes: the axis names must differ, got '" + names[i] + "' twice");
+    }
+  }
   return names;
 }
 
@@ -329,9 +367,16 @@ void apply_defaults(netmc::v1::JobSpec& spec) {
 
 sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   sim::ContourJob job;
-  job.trajectory = in_field("trajectory", [&] { return build_trajectory(spec.trajectory()); });
+  if (is_spatial_job(spec)) {
+    job.spatial_circle = in_field("trajectory", [&] { return build_spatial_circle(spec); });
+    const auto& c = spec.trajectory().spatial_circle();
+    job.duration_s = spec.duration_s() > 0.0 ? spec.duration_s() : (c.revolutions() > 0.0 ? c.revolutions() : 4.0) * c.period_s();
+  } else {
+    job.trajectory = in_field("trajectory", [&] { return build_trajectory(spec.trajectory()); });
+    job.duration_s = spec.duration_s();
+  }
   job.plant_name = spec.plant();
-  auto plants = in_field("plant", [&] { return plant::make_plant_set(spec.plant(), 2); });
+  auto plants = in_field("plant", [&] { return plant::make_plant_set(spec.plant(), job.axis_count()); });
   for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
   job.controller_name = spec.controller().name();
   job.controller = in_field("controller", [&] { return build_settings(spec.controller()); });
@@ -344,7 +389,6 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
     throw std::invalid_argument("clock: expected 'lockstep' or 'realtime', got '" + spec.clock() + "'");
   }
   job.sample_period_s = spec.sample_period_s();
-  job.duration_s = spec.duration_s();
   job.iterations = spec.iterations();
   job.seed = spec.seed();
   job.deadline_s = spec.deadline_s();
@@ -356,88 +400,18 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   if (spec.command_limit() != 0.0) job.command_limit = spec.command_limit();
   if (spec.divergence_limit_m() != 0.0) job.divergence_limit_m = spec.divergence_limit_m();
   if (spec.has_initial_position()) {
+    if (job.spatial_circle) {
+      throw std::invalid_argument("initial_position: a three-axis contour starts on the contour; expected none");
+    }
     job.initial_position = Eigen::Vector2d(spec.initial_position().x_m(), spec.initial_position().y_m());
   }
   job.validate();
   // Construct the controller once here so a bad name or gain is reported before anything runs.
-  in_field("controller", [&] {
-    return control::make_contour_controller(job.controller_name, job.controller,
-                                            job.sample_period_s, *job.trajectory)
-        ->describe();
-  });
+  in_field("controller", [&] { return job.make_controller()->describe(); });
   return job;
 }
 
 bool is_spatial_job(const netmc::v1::JobSpec& spec) { return spec.trajectory().has_spatial_circle(); }
-
-sim::SpatialJob build_spatial_job(const netmc::v1::JobSpec& spec) {
-  const auto& c = spec.trajectory().spatial_circle();
-  if (spec.controller().name() != "gtcf-sarc") {
-    throw std::invalid_argument("controller: a three-axis contour runs gtcf-sarc, got '" +
-                                spec.controller().name() + "'");
-  }
-  if (spec.uplink().has_delay() || spec.uplink().has_loss()) {
-    throw std::invalid_argument("uplink: a three-axis job models the downlink only; expected none");
-  }
-  if (spec.iterations() > 1) {
-    throw std::invalid_argument("iterations: a three-axis job runs one pass (GTCF-SARC does not learn); expected 1");
-  }
-  if (spec.has_initial_position() || spec.trajectory().has_halt()) {
-    throw std::invalid_argument("trajectory.spatial_circle: starts on the contour; initial_position and halt are two-axis only");
-  }
-  sim::SpatialJob job;
-  job.circle.center = Eigen::Vector3d(c.center_x_m(), c.center_y_m(), c.center_z_m());
-  job.circle.radius_m = c.radius_m();
-  job.circle.normal = Eigen::Vector3d(c.normal_x(), c.normal_y(), c.normal_z());
-  job.circle.start = Eigen::Vector3d(c.start_x(), c.start_y(), c.start_z());
-  job.circle.period_s = c.period_s();
-  job.revolutions = c.revolutions() > 0.0 ? c.revolutions() : 4.0;
-  job.plant_name = spec.plant();
-  in_field("plant", [&] { return plant::make_plant_set(spec.plant(), 3).description; });
-  // Task coordinates [rc1, rc2, rm]: both contour coordinates take the contour gains.
-  const auto& t = spec.controller().task_space();
-  if (t.has_lambda_c()) job.gains.lambda[0] = job.gains.lambda[1] = t.lambda_c();
-  if (t.has_lambda_m()) job.gains.lambda[2] = t.lambda_m();
-  if (t.has_k_c()) job.gains.feedback[0] = job.gains.feedback[1] = t.k_c();
-  if (t.has_k_m()) job.gains.feedback[2] = t.k_m();
-  job.downlink = build_link(spec.downlink(), "downlink");
-  job.sensor.resolution_m = spec.sensor().resolution_m();
-  job.sensor.noise_stddev_m = spec.sensor().noise_stddev_m();
-  job.sample_period_s = spec.sample_period_s();
-  if (spec.duration_s() > 0.0) job.revolutions = spec.duration_s() / c.period_s();
-  if (!(spec.evaluation_start_s() >= 0.0)) {
-    throw std::invalid_argument("evaluation_start: expected a non-negative duration");
-  }
-  job.evaluation_start_s = spec.evaluation_start_s();
-  if (spec.command_limit() != 0.0) job.command_limit = spec.command_limit();
-  if (spec.divergence_limit_m() != 0.0) job.divergence_limit_m = spec.divergence_limit_m();
-  job.seed = spec.seed();
-  in_field("trajectory.spatial_circle", [&] {
-    job.validate();
-    return 0;
-  });
-  return job;
-}
-
-netmc::v1::IterationMetrics to_proto(const sim::SpatialIterationMetrics& m) {
-  netmc::v1::IterationMetrics out;
-  out.set_iteration(1);
-  out.set_e_max_m(m.e_max_m);
-  out.set_e_rms_m(m.e_rms_m);
-  out.set_e_sum_m(m.e_sum_m);
-  out.set_e_rms_steady_m(m.e_rms_steady_m);
-  out.set_e_max_steady_m(m.e_max_steady_m);
-  out.set_tau_mean_s(m.tau_mean_s);
-  out.set_tau_p99_s(m.tau_p99_s);
-  out.set_tau_max_s(m.tau_max_s);
-  for (const double v : m.tracking_rms_m) out.add_tracking_rms_m(v);
-  for (const double v : m.command_rms_steady) out.add_command_rms_steady(v);
-  out.set_lost_setpoints(static_cast<std::uint32_t>(m.lost_setpoints));
-  out.set_stale_setpoints(static_cast<std::uint32_t>(m.stale_setpoints));
-  out.set_diverged(m.diverged);
-  out.set_diverged_at_s(m.diverged_at_s);
-  return out;
-}
 
 std::string describe_trajectory(const netmc::v1::Trajectory& trajectory) {
   if (trajectory.has_spatial_circle()) {
@@ -505,12 +479,10 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   out.set_tau_ca_mean_s(m.tau_ca_mean_s);
   out.set_tau_ca_p99_s(m.tau_ca_p99_s);
   out.set_tau_ca_max_s(m.tau_ca_max_s);
-  for (std::size_t axis = 0; axis < 2; ++axis) {
-    out.add_tracking_rms_m(m.tracking_rms_m[axis]);
-    out.add_tracking_max_m(m.tracking_max_m[axis]);
-    out.add_command_rms(m.command_rms[axis]);
-    out.add_command_rms_steady(m.command_rms_steady[axis]);
-  }
+  for (const double v : m.tracking_rms_m) out.add_tracking_rms_m(v);
+  for (const double v : m.tracking_max_m) out.add_tracking_max_m(v);
+  for (const double v : m.command_rms) out.add_command_rms(v);
+  for (const double v : m.command_rms_steady) out.add_command_rms_steady(v);
   out.set_deadline_misses(static_cast<std::uint32_t>(m.deadline_misses));
   out.set_lost_feedback(static_cast<std::uint32_t>(m.lost_feedback));
   out.set_late_feedback(static_cast<std::uint32_t>(m.late_feedback));

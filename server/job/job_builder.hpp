@@ -8,22 +8,20 @@
 #include "idl/job.pb.h"
 #include "server/sim/contour_job.hpp"
 #include "server/sim/iteration_metrics.hpp"
-#include "server/sim/spatial_job_runner.hpp"
 
 namespace netmc::job {
 
-// The names of the axes a two-axis job drives (spec.axes, default x, y), checked.
+// The names of the axes a job drives, in the group's order (spec.axes; default x, y, and z for
+// a three-axis contour), checked.
 std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec);
 // An axis or node name: 1-64 characters of A-Z a-z 0-9 _ . - (std::invalid_argument naming `field`).
 void check_name(const std::string& name, const std::string& field);
 // Fills the defaults of paper 001 where the spec leaves a field unset.
 void apply_defaults(netmc::v1::JobSpec& spec);
-// Builds the runnable job (loads delay trace files, validates every field).
+// Builds the runnable job, two axes or three (loads delay trace files, validates every field).
 sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec);
-// Three-axis jobs (trajectory.spatial_circle): GTCF-SARC in-process, see SpatialJobRunner.
+// A three-axis contour (trajectory.spatial_circle, thesis ch. 6).
 bool is_spatial_job(const netmc::v1::JobSpec& spec);
-sim::SpatialJob build_spatial_job(const netmc::v1::JobSpec& spec);
-netmc::v1::IterationMetrics to_proto(const sim::SpatialIterationMetrics& metrics);
 
 std::string describe_trajectory(const netmc::v1::Trajectory& trajectory);
 std::string describe_link(const netmc::v1::LinkProfile& link);

@@ -81,7 +81,7 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
   const double silence_s = std::chrono::duration<double>(limits_.silence_limit).count();
   try {
     for (std::uint32_t iteration = 1; iteration <= job_.iterations && !cancel.load(); ++iteration) {
-      const Eigen::Vector2d start = server_.begin_iteration(iteration);
+      const control::AxisVector start = server_.begin_iteration(iteration);
       // On the grid of whole periods of the server's clock: the jobs of one server that share a
       // period then sample in phase, and a node hosting axes of several of them takes all their
       // samples in one wake-up instead of one each.

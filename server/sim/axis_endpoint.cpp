@@ -6,17 +6,13 @@ namespace netmc::sim {
 
 AxisEndpoint::AxisEndpoint(std::unique_ptr<plant::AxisPlant> plant, const ContourJob& job,
                            std::size_t axis)
-    : AxisEndpoint(std::move(plant), job.sensor, job.command_limit, job.downlink, job.seed, axis) {}
-
-AxisEndpoint::AxisEndpoint(std::unique_ptr<plant::AxisPlant> plant,
-                           const plant::PositionSensorParameters& sensor, double command_limit,
-                           const LinkProfile& downlink, std::uint64_t seed, std::size_t axis)
     : axis_(std::move(plant),
             // The sensor's noise stream runs on across iterations: ILC cannot learn the noise.
-            plant::PositionSensor(sensor, seed, stream_id(StreamKind::sensor, axis, 0)), command_limit),
-      downlink_(netsim::LinkModel(downlink.delay->clone(), downlink.loss->clone(),
-                                  job_stream(seed, StreamKind::downlink, axis, 0))),
-      seed_(seed),
+            plant::PositionSensor(job.sensor, job.seed, stream_id(StreamKind::sensor, axis, 0)),
+            job.command_limit),
+      downlink_(netsim::LinkModel(job.downlink.delay->clone(), job.downlink.loss->clone(),
+                                  job_stream(job.seed, StreamKind::downlink, axis, 0))),
+      seed_(job.seed),
       index_(axis) {}
 
 void AxisEndpoint::begin_iteration(std::size_t iteration, double start_position_m) {

@@ -28,10 +28,8 @@ struct AppliedSetpoint {
 
 class AxisEndpoint {
  public:
+  // Axis `axis` (its place in the group) of `job`.
   AxisEndpoint(std::unique_ptr<plant::AxisPlant> plant, const ContourJob& job, std::size_t axis);
-  // The same from the parts an axis node needs (three-axis jobs have no ContourJob).
-  AxisEndpoint(std::unique_ptr<plant::AxisPlant> plant, const plant::PositionSensorParameters& sensor,
-               double command_limit, const LinkProfile& downlink, std::uint64_t seed, std::size_t axis);
 
   // Every iteration starts from rest at `start_position_m` with nothing in flight.
   void begin_iteration(std::size_t iteration, double start_position_m);

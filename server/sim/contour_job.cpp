@@ -3,6 +3,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "control/planar_contour_group.hpp"
+#include "control/spatial_contour_group.hpp"
+
 namespace netmc::sim {
 namespace {
 
@@ -19,8 +22,11 @@ std::string LinkProfile::describe() const {
 }
 
 void ContourJob::validate() const {
-  require(trajectory != nullptr, "trajectory: missing");
-  require(axes.size() == 2, "plant: expected 2 axes, got " + std::to_string(axes.size()));
+  require((trajectory != nullptr) != (spatial_circle != nullptr), "trajectory: missing");
+  require(!spatial_circle || (std::isfinite(duration_s) && duration_s > 0.0),
+          "duration: a circle in space needs a positive run length");
+  require(axes.size() == axis_count(), "plant: expected " + std::to_string(axis_count()) + " axes, got " +
+                                           std::to_string(axes.size()));
   for (const auto& axis : axes) require(axis != nullptr, "plant: missing axis model");
   require(std::isfinite(sample_period_s) && sample_period_s > 0.0,
           "sample_period: expected a positive duration, got " + std::to_string(sample_period_s));
@@ -36,19 +42,35 @@ void ContourJob::validate() const {
   require(divergence_limit_m > 0.0, "divergence_limit: expected a positive length");
   require(uplink.delay && uplink.loss && downlink.delay && downlink.loss,
           "delay: every link needs a delay and a loss model");
-  require(!initial_position || initial_position->allFinite(),
-          "initial_position: expected finite coordinates");
+  require(!initial_position || (static_cast<std::size_t>(initial_position->size()) == axis_count() &&
+                                initial_position->allFinite()),
+          "initial_position: expected finite coordinates, one per axis");
   const double run_s = duration_s > 0.0 ? duration_s : trajectory->duration_s();
   require(run_s / sample_period_s <= 1e8,
           "sample_period: too many cycles for the run length (more than 1e8)");
 }
 
-Eigen::Vector2d ContourJob::start_position() const {
-  return initial_position ? *initial_position : Eigen::Vector2d(trajectory->sample(0.0).position);
+control::AxisVector ContourJob::start_position() const {
+  if (initial_position) return *initial_position;
+  if (spatial_circle) return spatial_circle->sample(0.0).position;
+  return trajectory->sample(0.0).position;
 }
 
 double ContourJob::evaluation_start() const {
-  return resolve_evaluation_start(evaluation_start_s, trajectory->period_s());
+  return resolve_evaluation_start(evaluation_start_s,
+                                  spatial_circle ? spatial_circle->period_s() : trajectory->period_s());
+}
+
+std::shared_ptr<const control::GroupContour> ContourJob::contour() const {
+  if (spatial_circle) return std::make_shared<control::SpatialContour>(spatial_circle, duration_s);
+  return std::make_shared<control::PlanarContour>(trajectory);
+}
+
+std::unique_ptr<control::GroupController> ContourJob::make_controller() const {
+  if (spatial_circle) {
+    return control::make_spatial_group_controller(controller_name, controller, sample_period_s, spatial_circle);
+  }
+  return control::make_planar_group_controller(controller_name, controller, sample_period_s, *trajectory);
 }
 
 std::size_t ContourJob::cycles() const {

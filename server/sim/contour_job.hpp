@@ -12,8 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "control/contour_group.hpp"
 #include "control/controller_catalog.hpp"
 #include "control/reference_trajectory.hpp"
+#include "control/spatial_circle.hpp"
 #include "netsim/delay_model.hpp"
 #include "netsim/loss_model.hpp"
 #include "plant/axis_plant.hpp"
@@ -35,10 +37,13 @@ inline double resolve_evaluation_start(double requested_s, double reference_peri
   return requested_s > 0.0 ? requested_s : 2.0 * reference_period_s;
 }
 
+// A contour group of two axes (a planar trajectory) or three (a circle in space, thesis ch. 6):
+// one runner, one server loop and one data plane for both.
 struct ContourJob {
-  std::shared_ptr<const control::ReferenceTrajectory> trajectory;
+  std::shared_ptr<const control::ReferenceTrajectory> trajectory;  // two axes
+  std::shared_ptr<const control::SpatialCircle> spatial_circle;    // three axes (then duration_s > 0)
   std::string plant_name;
-  std::vector<std::shared_ptr<const plant::AxisPlant>> axes;  // prototypes, x then y
+  std::vector<std::shared_ptr<const plant::AxisPlant>> axes;  // prototypes, in group order
   std::string controller_name;
   control::ControllerSettings controller;
   LinkProfile uplink;     // sensor -> controller (tau_sc)
@@ -58,12 +63,17 @@ struct ContourJob {
   double evaluation_start_s = 0.0;
   double evaluation_start() const;
   // Where the axes rest at t = 0; unset: the trajectory's start (zero initial error).
-  std::optional<Eigen::Vector2d> initial_position;
-  Eigen::Vector2d start_position() const;
+  std::optional<control::AxisVector> initial_position;
+  control::AxisVector start_position() const;
   bool record_traces = false;
 
   // Throws std::invalid_argument naming the field when the job cannot run.
   void validate() const;
+  std::size_t axis_count() const { return spatial_circle ? 3 : 2; }
+  // The group's contour and a fresh controller for it (throws std::invalid_argument
+  // "controller: ..." for a name or gain the group cannot run).
+  std::shared_ptr<const control::GroupContour> contour() const;
+  std::unique_ptr<control::GroupController> make_controller() const;
   std::size_t cycles() const;          // samples k = 0..N, so N + 1
   double deadline() const { return deadline_s > 0.0 ? deadline_s : sample_period_s; }
 };

@@ -13,7 +13,7 @@ IterationRecord ContourJobRunner::run_iteration() {
   const std::size_t cycles = server_.cycles();
   const double h = job_.sample_period_s;
 
-  const Eigen::Vector2d start = server_.begin_iteration(iteration);
+  const control::AxisVector start = server_.begin_iteration(iteration);
   for (std::size_t axis = 0; axis < axes_.size(); ++axis) {
     axes_[axis].begin_iteration(iteration, start[static_cast<Eigen::Index>(axis)]);
   }

@@ -29,8 +29,8 @@ double mean(const std::vector<double>& values) {
 
 ContourServer::ContourServer(const ContourJob& job)
     : job_((job.validate(), job)),
-      controller_(control::make_contour_controller(job_.controller_name, job_.controller,
-                                                   job_.sample_period_s, *job_.trajectory)),
+      contour_(job_.contour()),
+      controller_(job_.make_controller()),
       cycles_(job_.cycles()),
       evaluation_start_(job_.evaluation_start()) {
   for (std::size_t axis = 0; axis < job_.axes.size(); ++axis) {
@@ -39,9 +39,10 @@ ContourServer::ContourServer(const ContourJob& job)
   }
 }
 
-Eigen::Vector2d ContourServer::begin_iteration(std::size_t iteration) {
+control::AxisVector ContourServer::begin_iteration(std::size_t iteration) {
   // Every iteration starts from the same initial state; nothing of the previous one is in flight.
-  const Eigen::Vector2d start = job_.start_position();
+  const control::AxisVector start = job_.start_position();
+  const std::size_t axes = uplinks_.size();
   for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
     uplinks_[axis].reset(job_stream(job_.seed, StreamKind::uplink, axis, iteration));
   }
@@ -49,6 +50,11 @@ Eigen::Vector2d ContourServer::begin_iteration(std::size_t iteration) {
 
   record_ = IterationRecord{};
   record_.metrics.iteration = iteration;
+  for (auto* values : {&record_.metrics.tracking_rms_m, &record_.metrics.tracking_max_m,
+                       &record_.metrics.command_rms, &record_.metrics.command_rms_steady,
+                       &tracking_squares_, &command_squares_, &steady_command_squares_}) {
+    values->assign(axes, 0.0);
+  }
   if (job_.record_traces) record_.trace.resize(cycles_);
   server_measurement_ = start;
   true_position_ = start;  // until the first feedback (a realtime cycle may run without it)
@@ -62,9 +68,6 @@ Eigen::Vector2d ContourServer::begin_iteration(std::size_t iteration) {
   squared_error_sum_ = 0.0;
   steady_squared_sum_ = 0.0;
   steady_samples_ = 0;
-  tracking_squares_ = {};
-  command_squares_ = {};
-  steady_command_squares_ = {};
   compute_time_ = 0.0;
   samples_ = 0;
   return start;
@@ -94,7 +97,8 @@ double ContourServer::compute_time(std::uint64_t cycle) const {
 CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   IterationMetrics& m = record_.metrics;
   const double t = static_cast<double>(cycle) * job_.sample_period_s;
-  const control::ReferencePoint reference = job_.trajectory->sample(t);
+  contour_->sample(t, reference_);
+  const control::GroupReference& reference = reference_;
 
   // Event-driven: cycle k is computed when feedback k of every axis is in, or at the deadline
   // with the newest feedback the server holds. Only messages of cycles <= k are in flight.
@@ -123,13 +127,13 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   compute_time_ = std::max(compute_time_, complete ? last_arrival : deadline);
 
   CycleCommand out;
-  const control::ContouringCycle step = controller_->step(cycle, reference, server_measurement_);
+  const control::GroupCycle& step = controller_->step(cycle, reference, server_measurement_);
   out.command = step.command;
   out.send_time_s = compute_time_ + job_.compute_delay_s;
   tau_cc_.push_back(job_.compute_delay_s);
 
   // Metrics from the true plant state and the exact contour.
-  const double contour_error = job_.trajectory->contour_error(true_position_);
+  const double contour_error = contour_->contour_error(true_position_);
   if (!(std::abs(contour_error) <= job_.divergence_limit_m) || !step.command.allFinite()) {
     m.diverged = true;
     m.diverged_at_s = t;
@@ -159,14 +163,11 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   if (job_.record_traces) {
     CycleTrace& row = record_.trace[cycle];
     row.time_s = t;
-    for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
-      const auto i = static_cast<Eigen::Index>(axis);
-      row.reference_m[axis] = reference.position[i];
-      row.position_m[axis] = true_position_[i];
-      row.measured_m[axis] = measured_[i];
-      row.axis_command[axis] = step.axis_command[i];
-      row.command[axis] = step.command[i];
-    }
+    row.reference_m = reference.position;
+    row.position_m = true_position_;
+    row.measured_m = measured_;
+    row.axis_command = step.axis_command;
+    row.command = step.command;
     row.contour_error_m = contour_error;
     row.contour_error_estimate_m = step.estimate.contour_error;
     row.coupling_command = step.coupling_command;

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "control/contouring_controller.hpp"
+#include "control/contour_group.hpp"
 #include "netsim/delayed_channel.hpp"
 #include "server/sim/axis_endpoint.hpp"
 #include "server/sim/contour_job.hpp"
@@ -17,7 +17,7 @@
 namespace netmc::sim {
 
 struct CycleCommand {
-  Eigen::Vector2d command = Eigen::Vector2d::Zero();
+  control::AxisVector command;  // one per axis, in the group's order
   double send_time_s = 0.0;     // when the setpoints leave the server (virtual time)
   bool diverged = false;        // the loop is unstable: stop the iteration
 };
@@ -27,7 +27,7 @@ class ContourServer {
   explicit ContourServer(const ContourJob& job);
 
   // Returns the start position every axis must rest at for this iteration.
-  Eigen::Vector2d begin_iteration(std::size_t iteration);
+  control::AxisVector begin_iteration(std::size_t iteration);
   // Feedback `cycle` of `axis`, sampled at `sample_time_s`, enters the uplink.
   void submit_feedback(std::size_t axis, std::uint64_t cycle, double sample_time_s,
                        const AxisSample& sample);
@@ -49,7 +49,8 @@ class ContourServer {
 
  private:
   ContourJob job_;
-  std::unique_ptr<control::ContourController> controller_;
+  std::shared_ptr<const control::GroupContour> contour_;
+  std::unique_ptr<control::GroupController> controller_;
   std::vector<netsim::DelayedChannel<double>> uplinks_;
   std::vector<netsim::DelayedChannel<double>::Delivery> arrived_;  // one cycle's, reused
   std::size_t cycles_;
@@ -57,15 +58,16 @@ class ContourServer {
 
   // State of the current iteration.
   IterationRecord record_;
-  Eigen::Vector2d server_measurement_ = Eigen::Vector2d::Zero();
-  Eigen::Vector2d true_position_ = Eigen::Vector2d::Zero();
-  Eigen::Vector2d measured_ = Eigen::Vector2d::Zero();
+  control::GroupReference reference_;  // one cycle's, reused
+  control::AxisVector server_measurement_;
+  control::AxisVector true_position_;
+  control::AxisVector measured_;
   std::vector<std::int64_t> newest_sequence_;
   std::vector<double> tau_, tau_sc_, tau_cc_, tau_ca_;
   double squared_error_sum_ = 0.0;
   double steady_squared_sum_ = 0.0;
   std::size_t steady_samples_ = 0;
-  std::array<double, 2> tracking_squares_{}, command_squares_{}, steady_command_squares_{};
+  std::vector<double> tracking_squares_, command_squares_, steady_command_squares_;
   double compute_time_ = 0.0;
   std::size_t samples_ = 0;
 };

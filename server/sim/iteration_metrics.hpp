@@ -1,9 +1,10 @@
 #pragma once
 // Per-iteration results of a contouring job (architecture.md, "Metrics"), SI units.
 
-#include <array>
 #include <cstdint>
 #include <vector>
+
+#include "control/contour_group.hpp"
 
 namespace netmc::sim {
 
@@ -14,11 +15,12 @@ struct IterationMetrics {
   double e_sum_m = 0.0;                  // sum of |eps(k)| (paper 001's cumulative error)
   double e_rms_steady_m = 0.0;           // over the evaluation window (after the start-up)
   double e_max_steady_m = 0.0;
-  std::array<double, 2> tracking_rms_m{};
-  std::array<double, 2> tracking_max_m{};
-  std::array<double, 2> command_rms{};
+  // Per axis, in the group's order.
+  std::vector<double> tracking_rms_m;
+  std::vector<double> tracking_max_m;
+  std::vector<double> command_rms;
   // Over the evaluation window, of the command as the axis applies it (limited to command_limit).
-  std::array<double, 2> command_rms_steady{};
+  std::vector<double> command_rms_steady;
   double tau_mean_s = 0.0;               // loop delay t_arrival(setpoint k) - t_k
   double tau_p50_s = 0.0;
   double tau_p99_s = 0.0;
@@ -38,16 +40,16 @@ struct IterationMetrics {
   double clock_uncertainty_s = 0.0;      // distributed realtime: +- on tau_sc / tau_ca
 };
 
-// One sample of a per-cycle trace (for --csv).
+// One sample of a per-cycle trace (for --csv); per-axis values in the group's order.
 struct CycleTrace {
   double time_s = 0.0;
-  std::array<double, 2> reference_m{};
-  std::array<double, 2> position_m{};
-  std::array<double, 2> measured_m{};
+  control::AxisVector reference_m;
+  control::AxisVector position_m;
+  control::AxisVector measured_m;
   double contour_error_m = 0.0;
   double contour_error_estimate_m = 0.0;
-  std::array<double, 2> axis_command{};
-  std::array<double, 2> command{};
+  control::AxisVector axis_command;
+  control::AxisVector command;
   double coupling_command = 0.0;
   double tau_s = -1.0;                   // of axis x; -1 when its setpoint was lost
 };

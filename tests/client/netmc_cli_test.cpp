@@ -1,6 +1,7 @@
 // The netmc binary end to end: exit codes, one clear message, no half-written output, JSON.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -56,13 +57,30 @@ TEST(NetmcCli, BadInputFailsWithOneMessageNamingTheFieldAndWritesNothing) {
 TEST(NetmcCli, UsageErrorsExitWithCode2) {
   EXPECT_EQ(run("sim --no-such-flag").exit_code, 2);
   EXPECT_EQ(run("sim --preset seed999").exit_code, 2);
-  // Three-axis jobs: in-process only, and without per-cycle traces; refused before anything runs.
-  EXPECT_EQ(run("run --server 127.0.0.1:9 --preset thesis-spatial").exit_code, 2);
-  const auto traces = scratch("spatial");
-  const Result plot = run("sim --preset thesis-spatial --csv " + traces.string());
+  // Three-axis jobs have no planar figure: refused before anything runs.
+  const auto figures = scratch("spatial");
+  const Result plot = run("sim --preset thesis-spatial --plot " + figures.string());
   EXPECT_EQ(plot.exit_code, 2);
-  EXPECT_NE(plot.output.find("--csv: three-axis"), std::string::npos) << plot.output;
-  EXPECT_FALSE(std::filesystem::exists(traces));
+  EXPECT_NE(plot.output.find("--plot: the figures are planar"), std::string::npos) << plot.output;
+  EXPECT_FALSE(std::filesystem::exists(figures));
+}
+
+TEST(NetmcCli, ThreeAxisTracesHaveAColumnPerAxis) {
+  const auto traces = scratch("spatial-traces");
+  const Result result = run("sim --preset thesis-spatial --duration 0.1s --csv " + traces.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  std::ifstream file(traces / "1-gtcf-sarc, 3 axes.csv");
+  ASSERT_TRUE(file) << "no trace of the first run";
+  std::string header, first_row;
+  std::getline(file, header);
+  std::getline(file, first_row);
+  EXPECT_EQ(header,
+            "time_s,x_ref_m,y_ref_m,z_ref_m,x_m,y_m,z_m,x_measured_m,y_measured_m,z_measured_m,"
+            "contour_error_m,contour_error_estimate_m,ux,uy,uz,Ux,Uy,Uz,ue,tau_x_s");
+  EXPECT_EQ(std::count(first_row.begin(), first_row.end(), ','), std::count(header.begin(), header.end(), ','));
+  std::size_t rows = 1;
+  for (std::string line; std::getline(file, line);) ++rows;
+  EXPECT_EQ(rows, 501u);  // 0.1 s at 0.2 ms, samples 0..N
 }
 
 TEST(NetmcCli, JsonHoldsEveryIterationOfEveryRun) {

@@ -1,0 +1,56 @@
+#include "control/planar_contour_group.hpp"
+
+#include <stdexcept>
+
+namespace netmc::control {
+
+PlanarContour::PlanarContour(std::shared_ptr<const ReferenceTrajectory> trajectory)
+    : trajectory_(std::move(trajectory)) {
+  if (!trajectory_) throw std::invalid_argument("trajectory: missing");
+}
+
+void PlanarContour::sample(double time_s, GroupReference& out) const {
+  const ReferencePoint point = trajectory_->sample(time_s);
+  out.position = point.position;
+  out.velocity = point.velocity;
+  out.acceleration = point.acceleration;
+}
+
+double PlanarContour::contour_error(const AxisVector& point) const {
+  return trajectory_->contour_error(Eigen::Vector2d(point[0], point[1]));
+}
+
+PlanarGroupController::PlanarGroupController(std::unique_ptr<ContourController> controller)
+    : controller_(std::move(controller)) {
+  if (!controller_) throw std::invalid_argument("controller: missing");
+  cycle_.command.setZero(2);
+  cycle_.axis_command.setZero(2);
+}
+
+void PlanarGroupController::begin_iteration(const AxisVector& initial_position, std::size_t samples) {
+  controller_->begin_iteration(Eigen::Vector2d(initial_position[0], initial_position[1]), samples);
+}
+
+const GroupCycle& PlanarGroupController::step(std::size_t cycle, const GroupReference& reference,
+                                              const AxisVector& measured) {
+  ReferencePoint point;
+  point.position = reference.position.head<2>();
+  point.velocity = reference.velocity.head<2>();
+  point.acceleration = reference.acceleration.head<2>();
+  const ContouringCycle out = controller_->step(cycle, point, Eigen::Vector2d(measured[0], measured[1]));
+  cycle_.command = out.command;
+  cycle_.axis_command = out.axis_command;
+  cycle_.coupling_command = out.coupling_command;
+  cycle_.estimate = out.estimate;
+  return cycle_;
+}
+
+std::unique_ptr<GroupController> make_planar_group_controller(std::string_view name,
+                                                              const ControllerSettings& settings,
+                                                              double sample_period_s,
+                                                              const ReferenceTrajectory& trajectory) {
+  return std::make_unique<PlanarGroupController>(
+      make_contour_controller(name, settings, sample_period_s, trajectory));
+}
+
+}  // namespace netmc::control
