@@ -5,6 +5,8 @@
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/reflection.h>
 
+#include <algorithm>
+#include <array>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -16,7 +18,7 @@ namespace {
 
 using google::protobuf::FieldDescriptor;
 
-constexpr std::array<const char*, 2> kAxisNames{"x", "y"};
+constexpr std::array<const char*, 3> kAxisNames{"x", "y", "z"};
 
 // tracking_rms_m -> tracking_rms_x_m; command_rms -> command_rms_x.
 std::string axis_column(const std::string& field, const char* axis) {
@@ -79,12 +81,13 @@ std::string optional_number(const std::optional<double>& value) {
 
 }  // namespace
 
-std::vector<std::string> sweep_csv_columns() {
+std::vector<std::string> sweep_csv_columns(std::size_t axes) {
+  axes = std::clamp<std::size_t>(axes, 2, kAxisNames.size());
   std::vector<std::string> columns{"config", "base", "run", "controller", "plant", "trajectory",
                                    "delay", "delay_max_s", "seed", "sample_period_s"};
   for (const auto* field : metric_fields()) {
     if (field->is_repeated()) {
-      for (const char* axis : kAxisNames) columns.push_back(axis_column(field->name(), axis));
+      for (std::size_t axis = 0; axis < axes; ++axis) columns.push_back(axis_column(field->name(), kAxisNames[axis]));
     } else {
       columns.push_back(field->name());
     }
@@ -95,7 +98,15 @@ std::vector<std::string> sweep_csv_columns() {
 std::string sweep_csv(const std::vector<SweepConfiguration>& grid,
                       const std::vector<RunOutcome>& outcomes) {
   std::string csv;
-  const auto columns = sweep_csv_columns();
+  // Per-axis columns for x, y, and z where a run has a third axis (empty in two-axis rows).
+  std::size_t axes = 2;
+  for (const auto& outcome : outcomes) {
+    for (const auto& metrics : outcome.result.iterations()) {
+      axes = std::max(axes, static_cast<std::size_t>(metrics.tracking_rms_m_size()));
+    }
+  }
+  axes = std::min(axes, kAxisNames.size());
+  const auto columns = sweep_csv_columns(axes);
   for (std::size_t i = 0; i < columns.size(); ++i) {
     if (i > 0) csv += ',';
     csv += columns[i];
@@ -113,7 +124,7 @@ std::string sweep_csv(const std::vector<SweepConfiguration>& grid,
       csv += prefix;
       for (const auto* field : metric_fields()) {
         if (field->is_repeated()) {
-          for (std::size_t axis = 0; axis < kAxisNames.size(); ++axis) {
+          for (std::size_t axis = 0; axis < axes; ++axis) {
             csv += ',';
             csv += format_value(metrics, field, static_cast<int>(axis));
           }

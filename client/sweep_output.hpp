@@ -12,8 +12,8 @@
 namespace netmc::cli {
 
 // Column names: configuration columns, then every IterationMetrics field (per-axis fields
-// split into _x/_y before the unit suffix: tracking_rms_x_m).
-std::vector<std::string> sweep_csv_columns();
+// split into _x/_y (and _z for `axes` = 3) before the unit suffix: tracking_rms_x_m).
+std::vector<std::string> sweep_csv_columns(std::size_t axes = 2);
 // `outcomes[i]` belongs to `grid[i]`.
 std::string sweep_csv(const std::vector<SweepConfiguration>& grid,
                       const std::vector<RunOutcome>& outcomes);

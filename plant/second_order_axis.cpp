@@ -4,6 +4,7 @@
 #include <sstream>
 #include <utility>
 
+#include "plant/coulomb_taylor_step.hpp"
 #include "plant/parameter_checks.hpp"
 #include "plant/rk4_integrator.hpp"
 #include "plant/smooth_sign.hpp"
@@ -53,9 +54,15 @@ void SecondOrderAxis::advance_piece(double t0, double duration, double input, do
   // Paper 001, eq. 3 with the digest 1.7 [A] friction -c tanh(x'/scale).
   if (smooth_part_is_constant(d)) {
     const double w = forcing + smooth_part(d, t0);
-    rk4_second_order(x, v, t0, duration, n, [&](double, double xx, double vv) {
-      return a1 * xx + a2 * vv + w - c * smooth_sign(vv * inv_scale);
-    });
+    const CoulombAxisCoefficients k{a1, a2, w, c, inv_scale};
+    const double h = duration / static_cast<double>(n);
+    // Fifth-order Taylor steps (one tanh each); RK4 where the friction's argument moves too far.
+    for (long long i = 0; i < n; ++i) {
+      if (coulomb_taylor_step(x, v, h, k)) continue;
+      rk4_second_order(x, v, t0 + static_cast<double>(i) * h, h, 1, [&](double, double xx, double vv) {
+        return a1 * xx + a2 * vv + w - c * smooth_sign(vv * inv_scale);
+      });
+    }
   } else {
     rk4_second_order(x, v, t0, duration, n, [&](double t, double xx, double vv) {
       return a1 * xx + a2 * vv + forcing + smooth_part(d, t) - c * smooth_sign(vv * inv_scale);

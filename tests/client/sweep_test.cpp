@@ -122,6 +122,24 @@ TEST(SweepGrid, WithoutAxesTheRunsOfThePresetAreTheControllerAxis) {
   EXPECT_EQ(grid.front().job.iterations(), 20u);
 }
 
+TEST(SweepOutput, AThreeAxisRunAddsZColumnsThatTwoAxisRowsLeaveEmpty) {
+  std::vector<SweepConfiguration> grid(2);
+  std::vector<RunOutcome> outcomes(2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    grid[i].number = i + 1;
+    auto& metrics = *outcomes[i].result.add_iterations();
+    for (std::size_t axis = 0; axis < 2 + i; ++axis) metrics.add_tracking_rms_m(1e-6 * static_cast<double>(axis + 1));
+  }
+  const CsvTable table = CsvTable::parse(sweep_csv(grid, outcomes), "sweep.csv");
+  EXPECT_EQ(table.header(), sweep_csv_columns(3));
+  ASSERT_EQ(table.rows(), 2u);
+  EXPECT_EQ(table.text(0, table.column("tracking_rms_z_m")), "");
+  EXPECT_EQ(table.number(1, table.column("tracking_rms_z_m")), 3e-6);
+  EXPECT_EQ(table.number(1, table.column("tracking_rms_y_m")), 2e-6);
+  // Two-axis grids keep their columns.
+  EXPECT_EQ(sweep_csv_columns(2).size() + 4, sweep_csv_columns(3).size());
+}
+
 TEST(SweepOutput, CsvHasOneRowPerConfigurationAndIterationWithEveryMetric) {
   const auto grid = expand_sweep(tiny_axes());
   const auto outcomes = run_grid(grid, 2);
