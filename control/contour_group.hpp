@@ -22,6 +22,14 @@ struct GroupReference {
   AxisVector position, velocity, acceleration;
 };
 
+// A reference point of fixed dimension (planar, spatial) into the group's form.
+template <class Point>
+void assign_reference(const Point& point, GroupReference& out) {
+  out.position = point.position;
+  out.velocity = point.velocity;
+  out.acceleration = point.acceleration;
+}
+
 class GroupContour {
  public:
   virtual ~GroupContour() = default;

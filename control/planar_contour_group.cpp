@@ -10,10 +10,7 @@ PlanarContour::PlanarContour(std::shared_ptr<const ReferenceTrajectory> trajecto
 }
 
 void PlanarContour::sample(double time_s, GroupReference& out) const {
-  const ReferencePoint point = trajectory_->sample(time_s);
-  out.position = point.position;
-  out.velocity = point.velocity;
-  out.acceleration = point.acceleration;
+  assign_reference(trajectory_->sample(time_s), out);
 }
 
 double PlanarContour::contour_error(const AxisVector& point) const {

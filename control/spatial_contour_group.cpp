@@ -16,10 +16,7 @@ SpatialContour::SpatialContour(std::shared_ptr<const SpatialCircle> circle, doub
 }
 
 void SpatialContour::sample(double time_s, GroupReference& out) const {
-  const SpatialReferencePoint point = circle_->sample(time_s);
-  out.position = point.position;
-  out.velocity = point.velocity;
-  out.acceleration = point.acceleration;
+  assign_reference(circle_->sample(time_s), out);
 }
 
 double SpatialContour::contour_error(const AxisVector& point) const {

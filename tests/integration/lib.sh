@@ -51,3 +51,15 @@ server_port() {
   cat "$tmp/server.log" >&2
   return 1
 }
+
+# same_json EXPECTED ACTUAL WHAT: passes (and says so) when the two JSON files are identical,
+# else shows the first differences and fails.
+same_json() {
+  if cmp -s "$1" "$2"; then
+    echo "$3 equals netmc sim: identical JSON ($(wc -c <"$1") bytes)"
+  else
+    echo "$3 differs from netmc sim:"
+    diff "$1" "$2" | head -40
+    return 1
+  fi
+}

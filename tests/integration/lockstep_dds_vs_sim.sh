@@ -18,10 +18,4 @@ port=$(server_port 127.0.0.1)
 "$build/client/netmc" run --server "127.0.0.1:$port" --quiet --json "$tmp/dds.json" "$@" >"$tmp/dds.txt"
 "$build/client/netmc" sim --json "$tmp/sim.json" "$@" >"$tmp/sim.txt"
 cat "$tmp/dds.txt"
-if cmp -s "$tmp/dds.json" "$tmp/sim.json"; then
-  echo "lockstep over DDS equals netmc sim: identical JSON ($(wc -c <"$tmp/sim.json") bytes)"
-else
-  echo "lockstep over DDS differs from netmc sim:"
-  diff "$tmp/sim.json" "$tmp/dds.json" | head -40
-  exit 1
-fi
+same_json "$tmp/sim.json" "$tmp/dds.json" "lockstep over DDS"

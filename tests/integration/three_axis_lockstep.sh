@@ -23,11 +23,5 @@ cat "$tmp/dds.txt"
 # Per-axis metrics of the first run: one value per axis.
 axes=$(awk '/"tracking_rms_m": \[/ {inside = 1; next} inside && /\]/ {print n; exit} inside {n++}' "$tmp/sim.json")
 [ "$axes" = 3 ] || { echo "FAIL: expected metrics of 3 axes, got $axes"; exit 1; }
-if cmp -s "$tmp/dds.json" "$tmp/sim.json"; then
-  echo "three axes in lockstep over DDS equal netmc sim: identical JSON ($(wc -c <"$tmp/sim.json") bytes, ${wall} s over DDS)"
-else
-  echo "three axes in lockstep over DDS differ from netmc sim:"
-  diff "$tmp/sim.json" "$tmp/dds.json" | head -40
-  exit 1
-fi
+same_json "$tmp/sim.json" "$tmp/dds.json" "three axes in lockstep over DDS ($wall s)"
 grep -E "^netmc-server: job [0-9]+ running on axes x,y,z " "$tmp/server.log" | head -1
