@@ -34,6 +34,8 @@ RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::
   netmc::v1::Request request;
   request.set_request_id(request_id);
   *request.mutable_submit()->mutable_spec() = spec;
+  // The server reads no file a client names: delay traces travel inside the spec.
+  job::inline_delay_traces(*request.mutable_submit()->mutable_spec());
   client.send(request);
   const auto accepted = expect_response(client, std::chrono::seconds(30), server);
   if (!accepted.has_accepted()) throw std::runtime_error("server " + server + ": unexpected answer to submit");

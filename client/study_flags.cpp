@@ -130,6 +130,9 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     }
     job::apply_defaults(job);
   }
+  // Delay trace files are read here, once, on this side: the jobs carry their samples, so a
+  // server (which reads no file a client names) and netmc sim run the same spec.
+  for (auto& job : plan.jobs) job::inline_delay_traces(job);
   if (!f.spec_file.empty()) {
     // Names (plant, controller, observer ...) are checked when the job is built: do it now so
     // the message names the file too.

@@ -50,7 +50,8 @@ std::unique_ptr<DelayModel> make_trace_delay(std::vector<double> delays_s);
 //     (e.g. "cycle,delay_ms"); any other name means seconds (the default);
 //   - every other line is data: its LAST comma-separated column is the delay, >= 0 and finite.
 // Throws std::invalid_argument naming file and line ("trace.csv:7: ...") for an unreadable or
-// empty file, a non-numeric, negative, NaN or infinite delay.
+// empty file, a non-numeric delay or one outside [0, 60] s; and for a path that is not a regular
+// file, a file over 64 MiB or more than 1e6 samples.
 std::vector<double> load_delay_trace_csv(const std::string& path);
 
 }  // namespace netmc::netsim

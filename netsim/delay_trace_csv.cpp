@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <optional>
@@ -12,10 +13,13 @@
 #include <system_error>
 
 #include "netsim/delay_model.hpp"
+#include "netsim/parameter_check.hpp"
 
 namespace netmc::netsim {
 
 namespace {
+
+constexpr std::uintmax_t kMaxDelayTraceBytes = std::uintmax_t{64} << 20;
 
 std::string_view trim(std::string_view text) {
   constexpr std::string_view whitespace = " \t\r\n";  // '\r' so CRLF files work too
@@ -62,6 +66,20 @@ double unit_from_header(std::string_view column_name) {
 }  // namespace
 
 std::vector<double> load_delay_trace_csv(const std::string& path) {
+  // A regular file of bounded size: not a device (/dev/zero never ends a line), FIFO or directory.
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (error || !std::filesystem::exists(status)) {
+    throw std::invalid_argument("delay trace CSV " + path + ": cannot open the file for reading (no such file)");
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw std::invalid_argument("delay trace CSV " + path + ": not a regular file (a device, FIFO or directory)");
+  }
+  const auto size = std::filesystem::file_size(path, error);
+  if (error || size > kMaxDelayTraceBytes) {
+    throw std::invalid_argument("delay trace CSV " + path + ": larger than " +
+                                std::to_string(kMaxDelayTraceBytes >> 20) + " MiB");
+  }
   std::ifstream file(path);
   if (!file) {
     throw std::invalid_argument("delay trace CSV " + path + ": cannot open the file for reading");
@@ -89,8 +107,11 @@ std::vector<double> load_delay_trace_csv(const std::string& path) {
            "last column must be a delay number (got '" + std::string(token) + "'; a header is only allowed "
            "as the first non-comment line)");
     }
-    if (!(std::isfinite(*value) && *value >= 0.0)) {
-      fail(path, line_number, "delay must be a finite number >= 0 (got '" + std::string(token) + "')");
+    if (!(std::isfinite(*value) && *value >= 0.0 && *value * seconds_per_unit <= kMaxDelayS)) {
+      fail(path, line_number, "delay must be a number in [0, 60] s (got '" + std::string(token) + "')");
+    }
+    if (delays_s.size() == kMaxDelayTraceSamples) {
+      fail(path, line_number, "more than " + std::to_string(kMaxDelayTraceSamples) + " delay samples");
     }
     delays_s.push_back(*value * seconds_per_unit);
   }

@@ -25,8 +25,8 @@ std::string assignment(std::string_view name, const std::string& value_text) {
 }  // namespace
 
 void require_delay(std::string_view model, std::string_view name, double value_s) {
-  if (std::isfinite(value_s) && value_s >= 0.0) return;
-  fail(model, name, "a finite delay >= 0 s", assignment(name, format_number(value_s) + " s"));
+  if (std::isfinite(value_s) && value_s >= 0.0 && value_s <= kMaxDelayS) return;
+  fail(model, name, "a delay in [0, " + format_number(kMaxDelayS) + "] s", assignment(name, format_number(value_s) + " s"));
 }
 
 void require_upper_bound(std::string_view model, std::string_view name, double value_s,

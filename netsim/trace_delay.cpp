@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "netsim/delay_model.hpp"
+#include "netsim/parameter_check.hpp"
 #include "netsim/text_format.hpp"
 
 namespace netmc::netsim {
@@ -46,10 +47,14 @@ std::unique_ptr<DelayModel> make_trace_delay(std::vector<double> delays_s) {
   if (delays_s.empty()) {
     throw std::invalid_argument("trace delay: delays_s must hold at least one delay (got an empty trace)");
   }
+  if (delays_s.size() > kMaxDelayTraceSamples) {
+    throw std::invalid_argument("trace delay: delays_s holds " + std::to_string(delays_s.size()) +
+                                " samples, more than " + std::to_string(kMaxDelayTraceSamples));
+  }
   for (std::size_t i = 0; i < delays_s.size(); ++i) {
-    if (!(std::isfinite(delays_s[i]) && delays_s[i] >= 0.0)) {
-      throw std::invalid_argument("trace delay: delays_s[" + std::to_string(i) +
-                                  "] must be a finite delay >= 0 s (got " + format_number(delays_s[i]) + " s)");
+    if (!(std::isfinite(delays_s[i]) && delays_s[i] >= 0.0 && delays_s[i] <= kMaxDelayS)) {
+      throw std::invalid_argument("trace delay: delays_s[" + std::to_string(i) + "] must be a delay in [0, " +
+                                  format_number(kMaxDelayS) + "] s (got " + format_number(delays_s[i]) + " s)");
     }
   }
   return std::make_unique<TraceDelay>(std::make_shared<const std::vector<double>>(std::move(delays_s)));

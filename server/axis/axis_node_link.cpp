@@ -203,6 +203,7 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
   if (!spec.ParseFromArray(begin.job_spec().data(), static_cast<int>(begin.job_spec().size()))) {
     throw std::invalid_argument("malformed job spec");
   }
+  job::reject_file_references(spec);  // a node opens no path a sample names
   if (spec.plant() != config_.plant) {
     throw std::invalid_argument("the job needs plant '" + spec.plant().substr(0, 64) + "', this node hosts '" +
                                 config_.plant + "'");

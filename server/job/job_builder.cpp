@@ -26,7 +26,14 @@ namespace {
 using netmc::v1::DelayProfile;
 using netmc::v1::LossProfile;
 
+// Points of a polyline or spline; the spline's construction solves a dense system in their count.
+constexpr int kMaxContourPoints = 1000;
+
 std::vector<Eigen::Vector2d> build_points(const google::protobuf::RepeatedPtrField<netmc::v1::Point2>& points) {
+  if (points.size() > kMaxContourPoints) {
+    throw std::invalid_argument("points: at most " + std::to_string(kMaxContourPoints) + ", got " +
+                                std::to_string(points.size()));
+  }
   std::vector<Eigen::Vector2d> out;
   out.reserve(static_cast<std::size_t>(points.size()));
   for (const auto& p : points) out.emplace_back(p.x_m(), p.y_m());
@@ -91,8 +98,12 @@ std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1:
       p.center = {l.center_x_m(), l.center_y_m()};
       p.amplitude_x_m = l.amplitude_x_m();
       p.amplitude_y_m = l.amplitude_y_m();
-      p.frequency_x = static_cast<int>(std::min<std::uint32_t>(l.frequency_x(), 1000000));
-      p.frequency_y = static_cast<int>(std::min<std::uint32_t>(l.frequency_y(), 1000000));
+      if (l.frequency_x() > 1000 || l.frequency_y() > 1000) {
+        throw std::invalid_argument("lissajous frequency_x, frequency_y: expected whole numbers in [1, 1000], got " +
+                                    std::to_string(l.frequency_x()) + ", " + std::to_string(l.frequency_y()));
+      }
+      p.frequency_x = static_cast<int>(l.frequency_x());
+      p.frequency_y = static_cast<int>(l.frequency_y());
       p.phase_rad = l.phase_rad();
       if (l.has_feed()) {
         return std::make_shared<control::FeedRateTrajectory>(std::make_shared<control::LissajousCurve>(p),
@@ -365,7 +376,67 @@ void apply_defaults(netmc::v1::JobSpec& spec) {
   if (spec.seed() == 0) spec.set_seed(1);
 }
 
+namespace {
+
+// The documented ranges of a spec's scalar fields (README, "Job spec limits"), checked before
+// anything is built, so an absurd spec costs nothing.
+void check_ranges(const netmc::v1::JobSpec& spec) {
+  const auto require = [](double value, double low, double high, const std::string& field, const std::string& unit) {
+    if (!(value >= low && value <= high)) {
+      throw std::invalid_argument(field + ": expected a number in [" + fmt::format("{:g}", low) + ", " +
+                                  fmt::format("{:g}", high) + "]" + unit + ", got " + fmt::format("{:g}", value));
+    }
+  };
+  if (spec.name().size() > kMaxJobNameBytes) {
+    throw std::invalid_argument("name: expected at most " + std::to_string(kMaxJobNameBytes) + " bytes, got " +
+                                std::to_string(spec.name().size()));
+  }
+  if (spec.sample_period_s() != 0.0) require(spec.sample_period_s(), 1e-6, 1.0, "sample_period", " s");
+  if (spec.iterations() > kMaxIterations) {
+    throw std::invalid_argument("iterations: expected at most " + std::to_string(kMaxIterations) + ", got " +
+                                std::to_string(spec.iterations()));
+  }
+  require(spec.duration_s(), 0.0, 1e6, "duration", " s");
+  require(spec.deadline_s(), 0.0, 60.0, "deadline", " s");
+  require(spec.compute_delay_s(), 0.0, 60.0, "compute_delay", " s");
+  require(spec.evaluation_start_s(), 0.0, 1e6, "evaluation_start", " s");
+  require(spec.command_limit(), 0.0, 1e6, "command_limit", " (0: none)");
+  require(spec.divergence_limit_m(), 0.0, 1e3, "divergence_limit", " m (0: 50 mm)");
+  require(spec.sensor().resolution_m(), 0.0, 1.0, "sensor.resolution", " m");
+  require(spec.sensor().noise_stddev_m(), 0.0, 1.0, "sensor.noise_stddev", " m");
+  if (spec.has_initial_position()) {
+    require(spec.initial_position().x_m(), -1e3, 1e3, "initial_position.x", " m");
+    require(spec.initial_position().y_m(), -1e3, 1e3, "initial_position.y", " m");
+  }
+}
+
+}  // namespace
+
+void reject_file_references(const netmc::v1::JobSpec& spec) {
+  for (const auto& [link, field] : {std::pair{&spec.uplink(), "uplink"}, std::pair{&spec.downlink(), "downlink"}}) {
+    if (link->delay().has_trace() && !link->delay().trace().path().empty()) {
+      throw std::invalid_argument(std::string(field) +
+                                  ".delay.trace.path: a job from the network names no file (this side reads "
+                                  "none); send the delays inline in delays_s (netmc run does)");
+    }
+  }
+}
+
+void inline_delay_traces(netmc::v1::JobSpec& spec) {
+  for (auto* link : {spec.mutable_uplink(), spec.mutable_downlink()}) {
+    auto& delay = *link->mutable_delay();
+    if (!delay.has_trace() || delay.trace().path().empty()) continue;
+    if (delay.trace().delays_s_size() == 0) {
+      for (const double value : netsim::load_delay_trace_csv(delay.trace().path())) {
+        delay.mutable_trace()->add_delays_s(value);
+      }
+    }
+    delay.mutable_trace()->clear_path();
+  }
+}
+
 sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
+  check_ranges(spec);
   sim::ContourJob job;
   if (is_spatial_job(spec)) {
     job.spatial_circle = in_field("trajectory", [&] { return build_spatial_circle(spec); });
@@ -447,7 +518,9 @@ std::string describe_link(const netmc::v1::LinkProfile& link) {
              format_seconds(d.markov().bad().max_s());
       break;
     case DelayProfile::kTrace:
-      text = "trace " + (d.trace().path().empty() ? std::string("(inline)") : d.trace().path());
+      // The same text whether the samples came from a file or inline (netmc run sends them inline).
+      text = d.trace().path().empty() ? "trace of " + std::to_string(d.trace().delays_s_size()) + " samples"
+                                      : "trace " + d.trace().path();
       break;
   }
   if (link.loss().kind_case() == LossProfile::kBernoulli) {

@@ -2,6 +2,8 @@
 // The edge between the control plane (protobuf JobSpec / RunResult) and the pure job runner.
 // Every field is checked here; errors are std::invalid_argument naming the field.
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,8 +20,19 @@ std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec);
 void check_name(const std::string& name, const std::string& field);
 // Fills the defaults of paper 001 where the spec leaves a field unset.
 void apply_defaults(netmc::v1::JobSpec& spec);
-// Builds the runnable job, two axes or three (loads delay trace files, validates every field).
+// Limits of a spec (README, "Job spec limits"); the other scalar fields' ranges are there too.
+inline constexpr std::size_t kMaxJobNameBytes = 256;
+inline constexpr std::uint32_t kMaxIterations = 10000;
+
+// Builds the runnable job, two axes or three (loads delay trace files a local spec names,
+// checks every field against its documented range).
 sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec);
+// A spec from the network names no file: throws std::invalid_argument naming the field of a
+// delay trace given by path. Servers and axis nodes call it before anything else.
+void reject_file_references(const netmc::v1::JobSpec& spec);
+// A local spec made fit to send: delay traces named by path are read into delays_s (bounded as
+// load_delay_trace_csv bounds them) and their paths dropped.
+void inline_delay_traces(netmc::v1::JobSpec& spec);
 // A three-axis contour (trajectory.spatial_circle, thesis ch. 6).
 bool is_spatial_job(const netmc::v1::JobSpec& spec);
 

@@ -5,30 +5,9 @@
 #include "netsim/delay_model.hpp"
 
 namespace netmc::service {
-namespace {
-
-void inline_trace(netmc::v1::LinkProfile& link) {
-  auto& delay = *link.mutable_delay();
-  if (delay.has_trace() && !delay.trace().path().empty() && delay.trace().delays_s_size() == 0) {
-    for (double value : netsim::load_delay_trace_csv(delay.trace().path())) {
-      delay.mutable_trace()->add_delays_s(value);
-    }
-    delay.mutable_trace()->clear_path();
-  }
-}
-
-}  // namespace
-
-netmc::v1::JobSpec spec_for_axes(const netmc::v1::JobSpec& spec) {
-  netmc::v1::JobSpec out = spec;
-  inline_trace(*out.mutable_uplink());
-  inline_trace(*out.mutable_downlink());
-  return out;
-}
-
 JobPublisher::JobPublisher(const JobChannels& channels, const netmc::v1::JobSpec& spec, std::uint64_t job_id)
     : channels_(channels), job_id_(job_id) {
-  const std::string bytes = spec_for_axes(spec).SerializeAsString();
+  const std::string bytes = spec.SerializeAsString();  // delay traces inline: the server reads no file
   if (bytes.size() > netmc::dds::kMaxJobSpec) {
     throw JobFailure("the job spec for the axes takes " + std::to_string(bytes.size()) + " bytes, more than " +
                      std::to_string(netmc::dds::kMaxJobSpec));

@@ -67,7 +67,4 @@ std::size_t axis_index(const JobChannels& channels, const std::string& axis);
 void publish_iteration_log(const JobChannels& channels, std::uint64_t job_id,
                            const sim::ContourJob& job, const sim::IterationRecord& record);
 
-// The spec the axes receive: delay traces are inlined, since the trace file lives on the server.
-netmc::v1::JobSpec spec_for_axes(const netmc::v1::JobSpec& spec);
-
 }  // namespace netmc::service

@@ -48,6 +48,9 @@ void ContourJob::validate() const {
   const double run_s = duration_s > 0.0 ? duration_s : trajectory->duration_s();
   require(run_s / sample_period_s <= 1e8,
           "sample_period: too many cycles for the run length (more than 1e8)");
+  // The work ceiling of one job: 1e9 simulated cycles (about 15 minutes of one core).
+  require(static_cast<double>(iterations) * (run_s / sample_period_s + 1.0) <= 1e9,
+          "iterations: iterations x cycles per iteration is more than 1e9, the work ceiling of a job");
 }
 
 control::AxisVector ContourJob::start_position() const {

@@ -38,9 +38,12 @@ TEST(ConstantDelay, AlwaysTheGivenDelay) {
 }
 
 TEST(ConstantDelay, RejectsNegativeAndNonFinite) {
-  expect_invalid_argument([] { make_constant_delay(-0.001); }, {"constant delay", "delay", ">= 0", "-0.001"});
+  expect_invalid_argument([] { make_constant_delay(-0.001); }, {"constant delay", "delay", "in [0, 60] s", "-0.001"});
   expect_invalid_argument([] { make_constant_delay(kNaN); }, {"constant delay", "nan"});
   expect_invalid_argument([] { make_constant_delay(kInf); }, {"constant delay", "inf"});
+  // A minute is the longest delay a parameter may state (a message this late is lost anyway).
+  EXPECT_NO_THROW(make_constant_delay(60.0));
+  expect_invalid_argument([] { make_constant_delay(60.5); }, {"constant delay", "in [0, 60] s", "60.5"});
 }
 
 TEST(UniformDelay, MeanAndVarianceMatchClosedForm) {
@@ -73,9 +76,9 @@ TEST(UniformDelay, EqualBoundsGiveConstant) {
 TEST(UniformDelay, RejectsBadBounds) {
   expect_invalid_argument([] { make_uniform_delay(0.002, 0.001); },
                           {"uniform delay: min must be <= max (got min=0.002 s, max=0.001 s)"});
-  expect_invalid_argument([] { make_uniform_delay(-0.001, 0.001); }, {"uniform delay", "min", ">= 0"});
+  expect_invalid_argument([] { make_uniform_delay(-0.001, 0.001); }, {"uniform delay", "min", "in [0, 60] s"});
   expect_invalid_argument([] { make_uniform_delay(0.0, kNaN); }, {"uniform delay", "max", "nan"});
-  expect_invalid_argument([] { make_uniform_delay(0.0, kInf); }, {"uniform delay", "max", "finite"});
+  expect_invalid_argument([] { make_uniform_delay(0.0, kInf); }, {"uniform delay", "max", "in [0, 60] s"});
 }
 
 TEST(UniformDelay, SameSeedSameSequenceDifferentStreamDifferent) {
@@ -137,7 +140,7 @@ TEST(TruncatedNormalDelay, FarTailWindowIsClampedNotEndless) {
 
 TEST(TruncatedNormalDelay, RejectsBadParameters) {
   expect_invalid_argument([] { make_truncated_normal_delay(0.001, -0.1, 0.0, 0.01); },
-                          {"truncated normal delay", "stddev", ">= 0"});
+                          {"truncated normal delay", "stddev", "in [0, 60] s"});
   expect_invalid_argument([] { make_truncated_normal_delay(0.001, 0.001, 0.002, 0.001); },
                           {"truncated normal delay", "max", ">= min", "min=0.002 s", "max=0.001 s"});
   expect_invalid_argument([] { make_truncated_normal_delay(kNaN, 0.001, 0.0, 0.01); },

@@ -76,14 +76,14 @@ TEST(DelayTraceCsv, LoadedTraceFeedsTraceDelay) {
 TEST(DelayTraceCsv, NegativeValueNamesFileAndLine) {
   TempCsv file("# trace\ndelay_ms\n1\n-2\n");
   expect_invalid_argument([&] { load_delay_trace_csv(file.path()); },
-                          {file.path() + ":4:", "finite number >= 0", "'-2'"});
+                          {file.path() + ":4:", "in [0, 60] s", "'-2'"});
 }
 
 TEST(DelayTraceCsv, NaNAndInfinityAreRejected) {
   TempCsv not_a_number("0.001\nnan\n");
   expect_invalid_argument([&] { load_delay_trace_csv(not_a_number.path()); }, {not_a_number.path() + ":2:", "nan"});
   TempCsv infinite("0.001\n0.002\ninf\n");
-  expect_invalid_argument([&] { load_delay_trace_csv(infinite.path()); }, {infinite.path() + ":3:", "finite"});
+  expect_invalid_argument([&] { load_delay_trace_csv(infinite.path()); }, {infinite.path() + ":3:", "in [0, 60] s"});
   TempCsv out_of_range("1e999\n");
   expect_invalid_argument([&] { load_delay_trace_csv(out_of_range.path()); }, {out_of_range.path() + ":1:"});
 }
@@ -104,6 +104,13 @@ TEST(DelayTraceCsv, EmptyOrHeaderOnlyFileIsAnError) {
                           {only_comments.path() + ":3:", "no delay samples"});
   TempCsv header_only("cycle,delay_ms\n");
   expect_invalid_argument([&] { load_delay_trace_csv(header_only.path()); }, {"no delay samples"});
+}
+
+TEST(DelayTraceCsv, DevicesAndOversizeSamplesAreRefusedBeforeReading) {
+  // /dev/zero never ends a line: refused as not a regular file, without reading it.
+  expect_invalid_argument([] { load_delay_trace_csv("/dev/zero"); }, {"/dev/zero", "not a regular file"});
+  const TempCsv late("delay_s\n0.001\n61\n");
+  expect_invalid_argument([&] { load_delay_trace_csv(late.path()); }, {late.path() + ":3:", "in [0, 60] s"});
 }
 
 TEST(DelayTraceCsv, MissingFileIsNamed) {

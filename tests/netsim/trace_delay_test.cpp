@@ -41,7 +41,7 @@ TEST(TraceDelay, DoesNotConsumeRandomNumbers) {
 
 TEST(TraceDelay, RejectsEmptyNegativeAndNaN) {
   expect_invalid_argument([] { make_trace_delay({}); }, {"trace delay", "delays_s", "empty"});
-  expect_invalid_argument([] { make_trace_delay({0.001, -0.002}); }, {"trace delay", "delays_s[1]", ">= 0", "-0.002"});
+  expect_invalid_argument([] { make_trace_delay({0.001, -0.002}); }, {"trace delay", "delays_s[1]", "in [0, 60] s", "-0.002"});
   expect_invalid_argument([] { make_trace_delay({std::numeric_limits<double>::quiet_NaN()}); },
                           {"trace delay", "delays_s[0]", "nan"});
 }
