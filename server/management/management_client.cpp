@@ -1,5 +1,7 @@
 #include "server/management/management_client.hpp"
 
+#include "server/management/access_token.hpp"
+
 #include <array>
 #include <cctype>
 #include <stdexcept>
@@ -66,6 +68,7 @@ ManagementClient::ManagementClient(const std::string& host_port,
                                    std::chrono::milliseconds connect_timeout)
     : name_(host_port), socket_(io_) {
   const HostPort target = parse_host_port(host_port);
+  if (const auto token = client_token_from_environment()) token_ = token->value();
 
   boost::system::error_code error;
   tcp::resolver resolver(io_);
@@ -96,7 +99,15 @@ ManagementClient::ManagementClient(const std::string& host_port,
 
 void ManagementClient::send(const netmc::v1::Request& request) {
   boost::system::error_code error;
-  asio::write(socket_, asio::buffer(encode_frame(request)), error);
+  std::string frame;
+  if (token_) {
+    netmc::v1::Request with_token = request;
+    with_token.set_token(*token_);
+    frame = encode_frame(with_token);
+  } else {
+    frame = encode_frame(request);
+  }
+  asio::write(socket_, asio::buffer(frame), error);
   if (error) throw std::runtime_error("server " + name_ + ": cannot send: " + describe(error));
 }
 

@@ -22,7 +22,8 @@ class ManagementClient {
   // and std::runtime_error("server HOST:PORT: …") when it cannot resolve or connect in time.
   ManagementClient(const std::string& host_port, std::chrono::milliseconds connect_timeout);
 
-  // Sends one framed request; throws std::runtime_error naming the server when it fails.
+  // Sends one framed request, with the token of $NETMC_TOKEN_FILE when that is set; throws
+  // std::runtime_error naming the server when it fails.
   void send(const netmc::v1::Request& request);
 
   // The next response, or nullopt when none arrives within `timeout` (the connection stays
@@ -32,6 +33,7 @@ class ManagementClient {
 
  private:
   std::string name_;  // "host:port", for messages
+  std::optional<std::string> token_;
   boost::asio::io_context io_;
   boost::asio::ip::tcp::socket socket_;
   FrameDecoder decoder_;

@@ -11,16 +11,18 @@ using asio::ip::tcp;
 // Shared with the pending asynchronous operations, so none of them refers to the server object.
 // Everything below is touched only on the acceptor's strand.
 struct ManagementServer::State {
-  State(asio::io_context& context, Handler on)
+  State(asio::io_context& context, Handler on, ManagementLimits caps)
       : io(context),
         acceptor(asio::make_strand(context)),
         retry(acceptor.get_executor()),
-        handler(std::move(on)) {}
+        handler(std::move(on)),
+        limits(caps) {}
 
   asio::io_context& io;
   tcp::acceptor acceptor;
   asio::steady_timer retry;  // after a transient accept error (e.g. out of descriptors)
   Handler handler;
+  ManagementLimits limits;
   std::vector<std::weak_ptr<Session>> sessions;
   bool stopped = false;
 };
@@ -42,17 +44,30 @@ void ManagementServer::accept(const std::shared_ptr<State>& state) {
       accept_after_error(state);
       return;
     }
-    std::erase_if(state->sessions, [](const std::weak_ptr<Session>& s) { return s.expired(); });
-    auto session = std::make_shared<Session>(std::move(socket), state->handler.on_request);
-    state->sessions.push_back(session);
-    session->start();
+    std::erase_if(state->sessions, [](const std::weak_ptr<Session>& s) {
+      const auto session = s.lock();
+      return !session || !session->open();
+    });
+    auto session = std::make_shared<Session>(std::move(socket), state->handler.on_request, state->limits.session);
+    if (state->sessions.size() >= state->limits.max_connections) {
+      // Refused with a reason, not left waiting: the client reports it and exits.
+      netmc::v1::Response refusal;
+      refusal.mutable_error()->set_message("server busy: " + std::to_string(state->limits.max_connections) +
+                                           " connections open, the limit; try again later");
+      session->start();
+      session->send(refusal);
+      session->close();
+    } else {
+      state->sessions.push_back(session);
+      session->start();
+    }
     accept(state);
   });
 }
 
 ManagementServer::ManagementServer(asio::io_context& io, const std::string& bind_address,
-                                   std::uint16_t port, Handler handler)
-    : state_(std::make_shared<State>(io, std::move(handler))) {
+                                   std::uint16_t port, Handler handler, ManagementLimits limits)
+    : state_(std::make_shared<State>(io, std::move(handler), limits)) {
   boost::system::error_code error;
   const auto address = asio::ip::make_address(bind_address, error);
   if (error) throw std::invalid_argument("--listen: '" + bind_address + "' is not an IP address");

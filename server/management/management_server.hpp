@@ -16,6 +16,14 @@
 
 namespace netmc::management {
 
+// What one server gives its clients at most.
+struct ManagementLimits {
+  // Open connections; one more is answered with an error and closed. With 16 MiB frames this
+  // bounds the memory that partial frames can take.
+  std::size_t max_connections = 32;
+  SessionLimits session;
+};
+
 class ManagementServer {
  public:
   struct Handler {
@@ -26,7 +34,7 @@ class ManagementServer {
   // std::invalid_argument for a bind_address that is not an IP address and std::runtime_error
   // when it cannot listen. The io_context is run by the caller.
   ManagementServer(boost::asio::io_context& io, const std::string& bind_address, std::uint16_t port,
-                   Handler handler);
+                   Handler handler, ManagementLimits limits = {});
   ~ManagementServer();  // stop()
   ManagementServer(const ManagementServer&) = delete;
   ManagementServer& operator=(const ManagementServer&) = delete;

@@ -1,15 +1,43 @@
 #include "server/management/session.hpp"
 
+#include <algorithm>
+
 namespace netmc::management {
 
 namespace asio = boost::asio;
 using asio::ip::tcp;
 
-Session::Session(tcp::socket socket, Dispatch dispatch)
-    : socket_(std::move(socket)), dispatch_(std::move(dispatch)) {}
+Session::Session(tcp::socket socket, Dispatch dispatch, SessionLimits limits)
+    : socket_(std::move(socket)),
+      dispatch_(std::move(dispatch)),
+      limits_(limits),
+      watchdog_(socket_.get_executor()),
+      last_activity_(std::chrono::steady_clock::now()) {}
 
 void Session::start() {
-  asio::dispatch(socket_.get_executor(), [self = shared_from_this()] { self->read(); });
+  asio::dispatch(socket_.get_executor(), [self = shared_from_this()] {
+    self->read();
+    self->watch();
+  });
+}
+
+void Session::watch() {
+  // Often enough to hold each limit to within a quarter of itself, at most once a second.
+  const auto period = std::clamp<std::chrono::milliseconds>(
+      std::min(limits_.idle_timeout, limits_.frame_timeout) / 4, std::chrono::milliseconds(10), std::chrono::seconds(1));
+  watchdog_.expires_after(period);
+  watchdog_.async_wait([self = shared_from_this()](const boost::system::error_code& error) {
+    if (error || self->closing_) return;
+    const auto now = std::chrono::steady_clock::now();
+    const bool idle = self->holds_.load(std::memory_order_acquire) == 0 &&
+                      now - self->last_activity_ > self->limits_.idle_timeout;
+    const bool stalled = self->decoder_.buffered() > 0 && now - self->frame_started_ > self->limits_.frame_timeout;
+    if (idle || stalled) {
+      self->abort_on_strand();
+      return;
+    }
+    self->watch();
+  });
 }
 
 void Session::read() {
@@ -21,6 +49,8 @@ void Session::read() {
       return;
     }
     if (self->closing_) return;
+    self->last_activity_ = std::chrono::steady_clock::now();
+    if (self->decoder_.buffered() == 0) self->frame_started_ = self->last_activity_;
     self->decoder_.feed(self->buffer_.data(), size);
     try {
       while (!self->closing_) {
@@ -32,6 +62,8 @@ void Session::read() {
                            " bytes is not a netmc.v1.Request");
         }
         if (self->dispatch_) self->dispatch_(*self, request);
+        // The next frame's clock starts with its first byte, already here or still to come.
+        self->frame_started_ = std::chrono::steady_clock::now();
       }
     } catch (const std::exception& problem) {
       // A malformed frame (or a handler that threw): say why, then close this connection.
@@ -65,6 +97,7 @@ void Session::write_next() {
                         return;
                       }
                       self->outbox_.pop_front();
+                      self->last_activity_ = std::chrono::steady_clock::now();
                       if (!self->outbox_.empty()) {
                         self->write_next();
                       } else if (self->closing_) {
@@ -95,6 +128,7 @@ void Session::abort_on_strand() {
   // outbox_ is left alone: a write in flight still refers to its front; that write completes
   // with an error and its handler clears the rest.
   boost::system::error_code ignored;
+  watchdog_.cancel();
   socket_.shutdown(tcp::socket::shutdown_both, ignored);
   socket_.close(ignored);
 }

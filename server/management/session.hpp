@@ -9,6 +9,7 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -19,6 +20,16 @@
 
 namespace netmc::management {
 
+// How long a connection may hold the server's resources without using them.
+struct SessionLimits {
+  // No byte in either direction for this long: closed (a client waiting for a job's updates is
+  // not idle while they come; a client that submitted nothing and says nothing is).
+  std::chrono::milliseconds idle_timeout{std::chrono::minutes(10)};
+  // A frame begun must be complete within this long (a slow or stalled sender of a large frame
+  // cannot hold its buffer).
+  std::chrono::milliseconds frame_timeout{std::chrono::seconds(30)};
+};
+
 class Session : public std::enable_shared_from_this<Session> {
  public:
   // Called on the io_context thread, on this session's strand, once per Request.
@@ -26,7 +37,7 @@ class Session : public std::enable_shared_from_this<Session> {
 
   // The socket's executor should be a strand (ManagementServer gives each session its own) so
   // that the io_context may be run by several threads.
-  Session(boost::asio::ip::tcp::socket socket, Dispatch dispatch);
+  Session(boost::asio::ip::tcp::socket socket, Dispatch dispatch, SessionLimits limits = {});
 
   // Starts reading; call once, after construction by std::make_shared.
   void start();
@@ -38,6 +49,11 @@ class Session : public std::enable_shared_from_this<Session> {
   // Thread-safe: false once the connection is closed or closing (by either side).
   bool open() const { return open_.load(std::memory_order_acquire); }
 
+  // Thread-safe: a session with work under way (a job it submitted) is not idle however long it
+  // stays silent; each hold() is undone by one release().
+  void hold() { holds_.fetch_add(1, std::memory_order_acq_rel); }
+  void release() { holds_.fetch_sub(1, std::memory_order_acq_rel); }
+
   // Thread-safe: stops reading, sends the responses already queued, then closes the socket.
   void close();
   // Thread-safe: closes the socket now; queued responses are dropped (server shutdown).
@@ -45,17 +61,23 @@ class Session : public std::enable_shared_from_this<Session> {
 
  private:
   void read();
+  void watch();  // the limits' timer
   void write_next();
   void close_on_strand();
   void abort_on_strand();
 
   boost::asio::ip::tcp::socket socket_;
   Dispatch dispatch_;
+  SessionLimits limits_;
+  boost::asio::steady_timer watchdog_;
+  std::chrono::steady_clock::time_point last_activity_;     // strand only
+  std::chrono::steady_clock::time_point frame_started_;     // strand only; when buffered() became > 0
   FrameDecoder decoder_;
   std::array<char, 8192> buffer_{};
   std::deque<std::string> outbox_;  // front() is being written
   bool closing_ = false;            // strand only
   std::atomic<bool> open_{true};
+  std::atomic<int> holds_{0};
 };
 
 }  // namespace netmc::management

@@ -47,7 +47,8 @@ JobService::JobService(dds::DdsContext& context, NodeDirectory& nodes, ClockTrac
       iteration_logs_(context.writer(
           context.topic<netmc::dds::IterationLogPubSubType>(dds::kIterationLogTopic),
           dds::Delivery::log)),
-      scheduler_([this] { schedule(); }) {}
+      scheduler_([this] { schedule(); }),
+      validator_([this] { validate(); }) {}
 
 JobService::~JobService() {
   {
@@ -56,6 +57,7 @@ JobService::~JobService() {
     for (auto& [id, job] : jobs_) job->cancel.store(true);
   }
   wake_.notify_all();
+  validator_.join();
   scheduler_.join();  // it joins every job thread before it returns
 }
 
@@ -65,31 +67,15 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
   response.set_request_id(request.request_id());
   switch (request.kind_case()) {
     case netmc::v1::Request::kSubmit: {
-      netmc::v1::JobSpec spec = request.submit().spec();
-      job::apply_defaults(spec);
-      try {
-        job::build_contour_job(spec);  // every field checked before the job is queued
-      } catch (const std::exception& error) {
-        session->send(error_response(request.request_id(), error.what()));
+      std::lock_guard lock(mutex_);
+      if (queue_.size() + submissions_.size() >= options_.max_queued_jobs) {
+        session->send(error_response(request.request_id(), "submit: the server's queue is full (" +
+                                                               std::to_string(options_.max_queued_jobs) +
+                                                               " jobs waiting); try again later"));
         return;
       }
-      auto job = std::make_shared<Job>();
-      job->axes = job::axis_names(spec);
-      job->spec = spec;
-      job->session = session;
-      job->request_id = request.request_id();
-      std::lock_guard lock(mutex_);
-      job->id = next_id_++;
-      job->status.set_job_id(job->id);
-      job->status.set_state("queued");
-      job->status.set_iterations_total(spec.iterations());
-      job->status.set_label(spec.name().empty() ? spec.controller().name() : spec.name());
-      jobs_[job->id] = job;
-      // Acknowledge before the worker can see the job, so "accepted" precedes its updates.
-      response.mutable_accepted()->set_job_id(job->id);
-      session->send(response);
-      queue_.push_back(job);
-      wake_.notify_one();
+      submissions_.push_back({session, request});
+      wake_.notify_all();
       return;
     }
     case netmc::v1::Request::kCancel: {
@@ -98,6 +84,12 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
       if (it == jobs_.end()) {
         session->send(error_response(request.request_id(),
                                      "cancel: no job " + std::to_string(request.cancel().job_id())));
+        return;
+      }
+      if (it->second->session.lock() != session) {
+        session->send(error_response(request.request_id(), "cancel: job " + std::to_string(it->first) +
+                                                               " was submitted on another connection; only it "
+                                                               "may cancel the job"));
         return;
       }
       it->second->cancel.store(true);
@@ -151,6 +143,85 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
   session->send(response);
 }
 
+void JobService::validate() {
+  std::unique_lock lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [this] { return stopping_ || !submissions_.empty(); });
+    if (stopping_) return;
+    const Submission submission = std::move(submissions_.front());
+    submissions_.pop_front();
+    lock.unlock();
+    admit(submission);  // the spec is checked (and its work bounded) off the I/O thread
+    lock.lock();
+  }
+}
+
+void JobService::admit(const Submission& submission) {
+  const auto& request = submission.request;
+  const auto& session = submission.session;
+  netmc::v1::JobSpec spec = request.submit().spec();
+  job::apply_defaults(spec);
+  try {
+    job::reject_file_references(spec);  // the server opens no path a client names
+    job::build_contour_job(spec);       // every field checked before the job is queued
+  } catch (const std::exception& error) {
+    session->send(error_response(request.request_id(), error.what()));
+    return;
+  }
+  auto job = std::make_shared<Job>();
+  job->axes = job::axis_names(spec);
+  job->spec = spec;
+  job->session = session;
+  job->request_id = request.request_id();
+  job->keep_after_disconnect = request.submit().keep_after_disconnect();
+  std::lock_guard lock(mutex_);
+  if (stopping_) return;
+  job->id = next_id_++;
+  job->status.set_job_id(job->id);
+  job->status.set_state("queued");
+  job->status.set_iterations_total(spec.iterations());
+  job->status.set_label(spec.name().empty() ? spec.controller().name() : spec.name());
+  jobs_[job->id] = job;
+  session->hold();  // not idle while its job is queued or running
+  // Acknowledge before the worker can see the job, so "accepted" precedes its updates.
+  netmc::v1::Response response;
+  response.set_request_id(request.request_id());
+  response.mutable_accepted()->set_job_id(job->id);
+  session->send(response);
+  queue_.push_back(job);
+  wake_.notify_all();
+}
+
+void JobService::tend_jobs() {
+  const auto gone = [](const Job& job) {
+    const auto session = job.session.lock();
+    return !job.keep_after_disconnect && (!session || !session->open());
+  };
+  for (auto it = queue_.begin(); it != queue_.end();) {
+    Job& job = **it;
+    if (!gone(job)) {
+      ++it;
+      continue;
+    }
+    std::cout << "netmc-server: job " << job.id << " dropped from the queue: its client disconnected" << std::endl;
+    job.status.set_state("cancelled");
+    job.status.set_error("its client disconnected");
+    ended_.push_back(job.id);
+    it = queue_.erase(it);
+  }
+  for (const auto& [id, thread] : running_) {
+    Job& job = *jobs_.at(id);
+    if (!job.cancel.load() && gone(job)) {
+      std::cout << "netmc-server: job " << id << " cancelled: its client disconnected" << std::endl;
+      job.cancel.store(true);
+    }
+  }
+  while (ended_.size() > options_.job_history) {
+    jobs_.erase(ended_.front());
+    ended_.pop_front();
+  }
+}
+
 void JobService::reply(Job& job, netmc::v1::Response response) {
   response.set_request_id(job.request_id);
   if (auto session = job.session.lock()) session->send(response);
@@ -180,7 +251,9 @@ void JobService::schedule() {
         finish(job);
       }));
     }
-    wake_.wait(lock);
+    tend_jobs();
+    // Woken by submissions and ends of jobs; every quarter second anyway, to see closed clients.
+    wake_.wait_for(lock, std::chrono::milliseconds(250));
   }
   // Stopping: the jobs were cancelled; wait for their threads.
   while (!running_.empty()) {
@@ -191,8 +264,10 @@ void JobService::schedule() {
 }
 
 void JobService::finish(const std::shared_ptr<Job>& job) {
+  if (const auto session = job->session.lock()) session->release();
   {
     std::lock_guard lock(mutex_);
+    ended_.push_back(job->id);
     for (const auto& axis : job->axes) busy_axes_.erase(axis);
     const auto it = running_.find(job->id);
     finished_.push_back(std::move(it->second));

@@ -30,6 +30,8 @@ struct JobServiceOptions {
   std::chrono::milliseconds silence_limit{500};       // realtime: an axis silent this long fails
   dds::TimeBase time_base = dds::TimeBase::monotonic; // realtime jobs' schedule
   std::size_t max_running_jobs = 32;
+  std::size_t max_queued_jobs = 256;                  // waiting for validation or for axes
+  std::size_t job_history = 256;                      // ended jobs kept for status; older ones forgotten
 };
 
 class JobService {
@@ -40,7 +42,8 @@ class JobService {
   JobService(const JobService&) = delete;
   JobService& operator=(const JobService&) = delete;
 
-  // Called on the management endpoint's thread for every request.
+  // Called on the management endpoint's thread for every request; never blocks on a job spec
+  // (submitted specs are checked on a thread of their own).
   void handle(const std::shared_ptr<management::Session>& session, const netmc::v1::Request& request);
 
  private:
@@ -52,7 +55,19 @@ class JobService {
     netmc::v1::JobStatus status;
     std::atomic<bool> cancel{false};
     std::vector<std::string> axes;
+    bool keep_after_disconnect = false;
   };
+  struct Submission {
+    std::shared_ptr<management::Session> session;
+    netmc::v1::Request request;
+  };
+
+  // The validation thread: checks each submitted spec, then queues the job.
+  void validate();
+  void admit(const Submission& submission);
+  // Under mutex_: cancels the jobs whose connection closed (unless kept) and forgets the oldest
+  // ended jobs beyond the history.
+  void tend_jobs();
 
   // Starts every queued job whose axes are free, in submission order: a job never overtakes an
   // earlier one that waits for one of its axes.
@@ -87,9 +102,12 @@ class JobService {
   std::set<std::string> busy_axes_;
   std::map<std::uint64_t, std::thread> running_;   // job threads, by job id
   std::vector<std::thread> finished_;              // to be joined
+  std::deque<Submission> submissions_;            // waiting for validation
+  std::deque<std::uint64_t> ended_;                // ended job ids, oldest first
   std::uint64_t next_id_ = 1;
   bool stopping_ = false;
   std::thread scheduler_;
+  std::thread validator_;
 };
 
 }  // namespace netmc::service

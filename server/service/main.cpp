@@ -8,8 +8,10 @@
 #include <boost/asio.hpp>
 
 #include <iostream>
+#include <optional>
 
 #include "server/dds/dds_options_cli.hpp"
+#include "server/management/access_token.hpp"
 #include "server/management/management_server.hpp"
 #include "server/realtime/realtime_options_cli.hpp"
 #include "server/service/job_service.hpp"
@@ -40,6 +42,23 @@ int main(int argc, char** argv) {
   app.add_option("--max-running-jobs", max_running_jobs,
                  "Jobs run at once, each on disjoint axes and its own thread; more wait in the queue")
       ->check(CLI::Range(1, 256));
+  int max_queued_jobs = 256;
+  app.add_option("--max-queued-jobs", max_queued_jobs,
+                 "Jobs waiting (for validation or for their axes); a submit beyond is refused")
+      ->check(CLI::Range(1, 100000));
+  netmc::management::ManagementLimits limits;
+  int max_connections = static_cast<int>(limits.max_connections);
+  app.add_option("--max-connections", max_connections,
+                 "Open management connections; one more is refused with a message")
+      ->check(CLI::Range(1, 4096));
+  int idle_timeout_s = 600;
+  app.add_option("--idle-timeout", idle_timeout_s,
+                 "Seconds a management connection with no job of its own may stay silent before it is closed")
+      ->check(CLI::Range(1, 86400));
+  std::string token_file;
+  app.add_option("--token-file", token_file,
+                 "Clients must show the token in this file (one line, 16+ characters; clients name the "
+                 "file in $NETMC_TOKEN_FILE); default: no token asked (keep --listen on loopback then)");
   netmc::dds::add_time_base_option(app, time_base);
   netmc::dds::add_dds_options(app, dds);
   netmc::realtime::RealtimeScheduling scheduling;
@@ -65,6 +84,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
+    std::optional<netmc::management::AccessToken> token;
+    if (!token_file.empty()) token = netmc::management::AccessToken::from_file(token_file);
     // Before the participant: its threads, and every job thread, inherit the scheduling.
     const auto scheduling_outcome = netmc::realtime::apply_process_scheduling(scheduling);
     for (const auto& fallback : scheduling_outcome.fallbacks) {
@@ -76,13 +97,26 @@ int main(int argc, char** argv) {
     netmc::service::JobService jobs(
         context, nodes, clocks,
         {std::chrono::milliseconds(axis_timeout_ms), std::chrono::milliseconds(discovery_timeout_ms),
-         std::chrono::milliseconds(silence_ms), time_base, static_cast<std::size_t>(max_running_jobs)});
+         std::chrono::milliseconds(silence_ms), time_base, static_cast<std::size_t>(max_running_jobs),
+         static_cast<std::size_t>(max_queued_jobs)});
+    limits.max_connections = static_cast<std::size_t>(max_connections);
+    limits.session.idle_timeout = std::chrono::seconds(idle_timeout_s);
     boost::asio::io_context io;
     netmc::management::ManagementServer server(
         io, listen.substr(0, colon), static_cast<std::uint16_t>(port),
-        {[&jobs](netmc::management::Session& session, const netmc::v1::Request& request) {
+        {[&jobs, &token](netmc::management::Session& session, const netmc::v1::Request& request) {
+          if (token && !token->accepts(request.token())) {
+            netmc::v1::Response refusal;
+            refusal.set_request_id(request.request_id());
+            refusal.mutable_error()->set_message("unauthenticated: this server asks for its token "
+                                                 "(set NETMC_TOKEN_FILE to the file that holds it)");
+            session.send(refusal);
+            session.close();
+            return;
+          }
           jobs.handle(session.shared_from_this(), request);
-        }});
+        }},
+        limits);
     boost::asio::signal_set signals(io, SIGINT, SIGTERM);
     signals.async_wait([&](const boost::system::error_code&, int) {
       server.stop();

@@ -3,12 +3,16 @@
 // bounded; the whole suite takes well under a second.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <atomic>
+#include <filesystem>
+#include <fstream>
 #include <future>
 #include <memory>
 #include <thread>
 #include <vector>
 
+#include "server/management/access_token.hpp"
 #include "server/management/management_client.hpp"
 #include "server/management/management_server.hpp"
 
@@ -252,20 +256,35 @@ TEST(ManagementEndpoint, ClientClosingEndsTheSession) {
   EXPECT_TRUE(runner.finishes_within(2s));
 }
 
-// Writes raw bytes to the server and returns the frames it answers before it closes.
-std::vector<netmc::v1::Response> raw_exchange(std::uint16_t port, const std::string& bytes) {
+// Connects, writes raw bytes (if any) and reads until the server closes (it must, or this test
+// hangs until the ctest timeout); returns what came and how long after the write it closed.
+struct Received {
+  std::string bytes;
+  std::chrono::milliseconds closed_after{0};
+};
+
+Received read_until_closed(std::uint16_t port, const std::string& bytes) {
   boost::asio::io_context io;
   boost::asio::ip::tcp::socket socket(io);
   socket.connect({boost::asio::ip::make_address("127.0.0.1"), port});
-  boost::asio::write(socket, boost::asio::buffer(bytes));
-  std::string received;
+  const auto started = std::chrono::steady_clock::now();
+  if (!bytes.empty()) boost::asio::write(socket, boost::asio::buffer(bytes));
+  Received received;
   boost::system::error_code error;
   std::array<char, 256> buffer{};
-  while (!error) {  // until the server closes: it must, or this test hangs (ctest timeout)
+  while (!error) {
     const std::size_t n = socket.read_some(boost::asio::buffer(buffer), error);
-    received.append(buffer.data(), n);
+    received.bytes.append(buffer.data(), n);
   }
   EXPECT_EQ(error, boost::asio::error::eof);
+  received.closed_after =
+      std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - started);
+  return received;
+}
+
+// Writes raw bytes to the server and returns the frames it answers before it closes.
+std::vector<netmc::v1::Response> raw_exchange(std::uint16_t port, const std::string& bytes) {
+  const std::string received = read_until_closed(port, bytes).bytes;
   FrameDecoder decoder;
   decoder.feed(received.data(), received.size());
   std::vector<netmc::v1::Response> responses;
@@ -317,6 +336,76 @@ TEST(ManagementEndpoint, OversizeFrameGetsAnErrorAndTheConnectionCloses) {
   ASSERT_TRUE(responses[0].has_error());
   EXPECT_NE(responses[0].error().message().find("exceeds the 16 MiB limit"), std::string::npos)
       << responses[0].error().message();
+}
+
+TEST(ManagementEndpoint, SilentAndStalledConnectionsAreClosedButOneWithWorkUnderWayIsNot) {
+  IoThread runner;  // first: everything holding a Session goes before the io_context
+  ManagementLimits limits;
+  limits.session.idle_timeout = 300ms;
+  limits.session.frame_timeout = 300ms;
+  ManagementServer server(runner.io, "127.0.0.1", 0, {[](Session& session, const netmc::v1::Request&) {
+    session.hold();  // as a job of this connection would
+  }}, limits);
+  runner.start();
+  // Nothing said at all: closed after the idle timeout.
+  const auto idle = read_until_closed(server.port(), "").closed_after;
+  EXPECT_GE(idle, 250ms);
+  EXPECT_LT(idle, 2s);
+  // Half a frame (1000 bytes announced, 10 sent): closed after the frame timeout.
+  const auto stalled = read_until_closed(server.port(), std::string("\0\0\x03\xe8", 4) + std::string(10, 'x')).closed_after;
+  EXPECT_GE(stalled, 250ms);
+  EXPECT_LT(stalled, 2s);
+  // A connection whose request started work stays open while silent.
+  ManagementClient client("127.0.0.1:" + std::to_string(server.port()), 2s);
+  client.send(submit_request(1));
+  EXPECT_FALSE(client.receive(1s).has_value());  // nothing to say, and not closed
+}
+
+TEST(ManagementEndpoint, OneConnectionOverTheCapIsRefusedWithAMessage) {
+  IoThread runner;  // first: everything holding a Session goes before the io_context
+  ManagementLimits limits;
+  limits.max_connections = 2;
+  std::atomic<int> requests{0};
+  ManagementServer server(runner.io, "127.0.0.1", 0, {[&](Session& session, const netmc::v1::Request& request) {
+    ++requests;
+    netmc::v1::Response accepted;
+    accepted.set_request_id(request.request_id());
+    accepted.mutable_accepted()->set_job_id(1);
+    session.send(accepted);
+  }}, limits);
+  runner.start();
+  const std::string endpoint = "127.0.0.1:" + std::to_string(server.port());
+  ManagementClient first(endpoint, 2s), second(endpoint, 2s);
+  for (auto* client : {&first, &second}) {  // both sessions exist before the third connects
+    client->send(submit_request(1));
+    ASSERT_TRUE(client->receive(2s).has_value());
+  }
+  const auto refused = raw_exchange(server.port(), encode_frame(submit_request(3)));
+  ASSERT_EQ(refused.size(), 1u);
+  ASSERT_TRUE(refused[0].has_error());
+  EXPECT_NE(refused[0].error().message().find("server busy: 2 connections"), std::string::npos)
+      << refused[0].error().message();
+  EXPECT_EQ(requests.load(), 2);
+}
+
+TEST(AccessToken, AcceptsOnlyTheTokenOfItsFile) {
+  const auto path = std::filesystem::temp_directory_path() / "netmc_token_test";
+  const auto write = [&](const std::string& text) {
+    std::ofstream file(path, std::ios::trunc);
+    file << text;
+  };
+  write("  0123456789abcdef-lab \n");
+  const AccessToken token = AccessToken::from_file(path.string());
+  EXPECT_TRUE(token.accepts("0123456789abcdef-lab"));
+  EXPECT_FALSE(token.accepts("0123456789abcdef-la"));
+  EXPECT_FALSE(token.accepts("0123456789abcdef-lab2"));
+  EXPECT_FALSE(token.accepts(""));
+  write("short\n");
+  EXPECT_THROW(AccessToken::from_file(path.string()), std::invalid_argument);
+  write("sixteen chars but spaces\n");
+  EXPECT_THROW(AccessToken::from_file(path.string()), std::invalid_argument);
+  std::filesystem::remove(path);
+  EXPECT_THROW(AccessToken::from_file(path.string()), std::invalid_argument);
 }
 
 TEST(ManagementServer, BadBindAddress) {

@@ -1,0 +1,258 @@
+// Test tool: a hostile (or careless) client of netmc-server's management endpoint. Each case is
+// an attack that once hurt the server; it prints "PASS case: what happened" when the server
+// defends itself and "FAIL case: ..." otherwise, and exits 1 if any case failed.
+// Needs a server whose axis nodes host x and y (plant seed001, lockstep), started with
+// --max-connections MAX, and $NETMC_TOKEN_FILE naming its token file if it asks for one.
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "server/management/frame_codec.hpp"
+#include "server/management/management_client.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using netmc::management::ManagementClient;
+
+std::string g_server;
+int g_failures = 0;
+
+void verdict(bool passed, const std::string& name, const std::string& detail) {
+  fmt::print("{} {}: {}\n", passed ? "PASS" : "FAIL", name, detail);
+  std::fflush(stdout);
+  if (!passed) ++g_failures;
+}
+
+netmc::v1::JobSpec small_job() {
+  netmc::v1::JobSpec spec;
+  auto& circle = *spec.mutable_trajectory()->mutable_circle();
+  circle.set_radius_m(0.01);
+  circle.set_center_x_m(0.05);
+  circle.set_center_y_m(0.05);
+  circle.set_period_s(8.0);
+  spec.mutable_controller()->set_name("adrc");
+  return spec;
+}
+
+// Submits and returns the first answer (nullopt: none within 5 s).
+std::optional<netmc::v1::Response> submit(ManagementClient& client, const netmc::v1::JobSpec& spec,
+                                          std::uint64_t id = 1) {
+  netmc::v1::Request request;
+  request.set_request_id(id);
+  *request.mutable_submit()->mutable_spec() = spec;
+  client.send(request);
+  return client.receive(5s);
+}
+
+std::string error_of(const std::optional<netmc::v1::Response>& response) {
+  if (!response) return "(no answer)";
+  return response->has_error() ? response->error().message() : "(not an error: " + response->ShortDebugString().substr(0, 80) + ")";
+}
+
+void refused(const std::string& name, const netmc::v1::JobSpec& spec, const std::string& expected) {
+  ManagementClient client(g_server, 5s);
+  const auto started = std::chrono::steady_clock::now();
+  const auto answer = submit(client, spec);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+  const std::string message = error_of(answer);
+  verdict(answer && answer->has_error() && message.find(expected) != std::string::npos && ms < 2000.0, name,
+          fmt::format("refused in {:.0f} ms: {}", ms, message));
+}
+
+void server_files() {
+  for (const char* path : {"/etc/shadow", "/dev/zero"}) {
+    auto spec = small_job();
+    spec.mutable_downlink()->mutable_delay()->mutable_trace()->set_path(path);
+    refused(std::string("trace path ") + path, spec, "names no file");
+  }
+}
+
+void absurd_values() {
+  auto spec = small_job();
+  spec.set_sample_period_s(1e308);
+  refused("sample period 1e308 s", spec, "sample_period");
+  spec = small_job();
+  spec.set_iterations(1000000000);
+  refused("1e9 iterations", spec, "iterations");
+  spec = small_job();
+  spec.mutable_downlink()->mutable_delay()->set_constant_s(1e308);
+  refused("delay 1e308 s", spec, "downlink.delay");
+  spec = small_job();
+  spec.mutable_sensor()->set_noise_stddev_m(std::numeric_limits<double>::quiet_NaN());
+  refused("sensor noise NaN", spec, "sensor.noise_stddev");
+  spec = small_job();
+  auto& lissajous = *spec.mutable_trajectory()->mutable_lissajous();
+  lissajous.set_amplitude_x_m(0.01);
+  lissajous.set_amplitude_y_m(0.01);
+  lissajous.set_frequency_x(4000000000u);
+  lissajous.set_frequency_y(4000000001u);
+  lissajous.set_period_s(8.0);
+  refused("lissajous p, q ~ 4e9", spec, "frequency");
+  spec = small_job();
+  spec.set_name(std::string(15 << 20, 'n'));
+  refused("15 MB job name", spec, "name");
+  spec = small_job();
+  auto& spline = *spec.mutable_trajectory()->mutable_spline();
+  for (int i = 0; i < 8000; ++i) {
+    auto& point = *spline.add_points();
+    point.set_x_m(0.05 * std::cos(i * 1e-3));
+    point.set_y_m(0.05 * std::sin(i * 1e-3));
+  }
+  spline.mutable_feed()->set_feed_m_s(0.01);
+  spline.mutable_feed()->set_max_normal_acceleration_m_s2(1.0);
+  refused("8000-point spline", spec, "points");
+}
+
+// A long job (20 iterations of 8 s, a few seconds in lockstep) on another connection.
+netmc::v1::JobSpec long_job() {
+  auto spec = small_job();
+  spec.set_iterations(200);
+  spec.set_name("long job");
+  return spec;
+}
+
+void cancel_by_another_connection() {
+  ManagementClient owner(g_server, 5s);
+  const auto accepted = submit(owner, long_job());
+  if (!accepted || !accepted->has_accepted()) {
+    verdict(false, "cancel from another connection", "the job was not accepted: " + error_of(accepted));
+    return;
+  }
+  ManagementClient intruder(g_server, 5s);
+  netmc::v1::Request cancel;
+  cancel.set_request_id(9);
+  cancel.mutable_cancel()->set_job_id(accepted->accepted().job_id());
+  intruder.send(cancel);
+  const auto answer = intruder.receive(5s);
+  verdict(answer && answer->has_error() && error_of(answer).find("another connection") != std::string::npos,
+          "cancel from another connection", error_of(answer));
+  // The owner may, and its job ends cancelled.
+  cancel.set_request_id(10);
+  owner.send(cancel);
+  std::string state;
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while (state.empty() && std::chrono::steady_clock::now() < deadline) {
+    const auto response = owner.receive(1s);
+    if (response && response->has_finished()) state = response->finished().state();
+  }
+  verdict(state == "cancelled", "cancel by its own connection", "job ended " + (state.empty() ? "(not seen)" : state));
+}
+
+void disconnect_cancels() {
+  std::uint64_t job_id = 0;
+  {
+    ManagementClient owner(g_server, 5s);
+    const auto accepted = submit(owner, long_job());
+    if (accepted && accepted->has_accepted()) job_id = accepted->accepted().job_id();
+  }  // the client goes away
+  // The server's log says what happened to it (checked by the script); here: its status.
+  ManagementClient observer(g_server, 5s);
+  std::string state;
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while (state != "cancelled" && std::chrono::steady_clock::now() < deadline) {
+    netmc::v1::Request status;
+    status.set_request_id(11);
+    status.mutable_status()->set_job_id(job_id);
+    observer.send(status);
+    const auto answer = observer.receive(2s);
+    if (answer && answer->has_status() && answer->status().jobs_size() == 1) state = answer->status().jobs(0).state();
+    std::this_thread::sleep_for(100ms);
+  }
+  verdict(job_id != 0 && state == "cancelled", "client disconnects mid-job", fmt::format("job {} {}", job_id, state));
+}
+
+void connection_cap(int max_connections) {
+  std::vector<std::unique_ptr<ManagementClient>> held;
+  for (int i = 0; i < max_connections; ++i) held.push_back(std::make_unique<ManagementClient>(g_server, 5s));
+  for (auto& client : held) {  // each session is set up before the next one is counted
+    netmc::v1::Request status;
+    status.set_request_id(12);
+    status.mutable_status();
+    client->send(status);
+    client->receive(5s);
+  }
+  ManagementClient extra(g_server, 5s);
+  netmc::v1::Request status;
+  status.set_request_id(13);
+  status.mutable_status();
+  std::string message;
+  try {
+    extra.send(status);
+    message = error_of(extra.receive(5s));
+  } catch (const std::exception& error) {
+    message = error.what();
+  }
+  verdict(message.find("server busy") != std::string::npos, "one connection over the cap", message);
+  held.clear();
+}
+
+void without_token() {
+  // A raw connection: ManagementClient would add the token of $NETMC_TOKEN_FILE.
+  boost::asio::io_context io;
+  boost::asio::ip::tcp::socket socket(io);
+  const auto colon = g_server.rfind(':');
+  socket.connect({boost::asio::ip::make_address(g_server.substr(0, colon)),
+                  static_cast<std::uint16_t>(std::stoi(g_server.substr(colon + 1)))});
+  netmc::v1::Request status;
+  status.set_request_id(14);
+  status.mutable_status();
+  boost::asio::write(socket, boost::asio::buffer(netmc::management::encode_frame(status)));
+  std::string received;
+  boost::system::error_code error;
+  std::array<char, 512> buffer{};
+  while (!error) received.append(buffer.data(), socket.read_some(boost::asio::buffer(buffer), error));
+  netmc::management::FrameDecoder decoder;
+  decoder.feed(received.data(), received.size());
+  netmc::v1::Response response;
+  const auto payload = decoder.next();
+  const bool parsed = payload && response.ParseFromString(*payload);
+  verdict(parsed && response.has_error() && response.error().message().find("unauthenticated") != std::string::npos &&
+              error == boost::asio::error::eof,
+          "request without the token", parsed ? error_of(response) + ", then closed" : "no answer");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"netmc_hostile_client: attacks a netmc-server's management endpoint, case by case"};
+  std::vector<std::string> cases;
+  int max_connections = 8;
+  app.add_option("--server", g_server, "HOST:PORT")->required();
+  app.add_option("--max-connections", max_connections, "The server's --max-connections");
+  app.add_option("cases", cases, "files, values, cancel, disconnect, connections, token (default: all but token)");
+  CLI11_PARSE(app, argc, argv);
+  if (cases.empty()) cases = {"files", "values", "cancel", "disconnect", "connections"};
+  const std::map<std::string, std::function<void()>> all{
+      {"files", server_files},
+      {"values", absurd_values},
+      {"cancel", cancel_by_another_connection},
+      {"disconnect", disconnect_cancels},
+      {"connections", [&] { connection_cap(max_connections); }},
+      {"token", without_token}};
+  for (const auto& name : cases) {
+    const auto it = all.find(name);
+    if (it == all.end()) {
+      fmt::print(stderr, "unknown case {}\n", name);
+      return 2;
+    }
+    try {
+      it->second();
+    } catch (const std::exception& error) {
+      verdict(false, name, std::string("the client saw: ") + error.what());
+    }
+  }
+  return g_failures == 0 ? 0 : 1;
+}
