@@ -33,20 +33,6 @@ std::string data_path(const std::string& data_dir, const std::string& name) {
   return (fs::absolute(data_dir) / name).string();
 }
 
-// gnuplot's enhanced text treats _ ^ @ & { } as markup.
-std::string plain(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    if (c == '_' || c == '^' || c == '@' || c == '&' || c == '{' || c == '}') out += "\\\\";
-    if (c == '"') {
-      out += '\'';
-      continue;
-    }
-    out += c;
-  }
-  return out;
-}
-
 constexpr const char* kStyle =
     "set style line 1 lc rgb '#1f77b4' lw 2 pt 7 ps 0.8\n"
     "set style line 2 lc rgb '#d62728' lw 2 pt 5 ps 0.8\n"
@@ -130,7 +116,7 @@ Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
   const auto run_title = [&](std::size_t i) {
     const auto& iterations = outputs.study.runs(static_cast<int>(i)).iterations();
     const bool unstable = !iterations.empty() && iterations[iterations.size() - 1].diverged();
-    return plain(outputs.traces[i].label) + (unstable ? " (unstable)" : "");
+    return gnuplot_text(outputs.traces[i].label) + (unstable ? " (unstable)" : "");
   };
   for (std::size_t i = 0; i < outputs.traces.size(); ++i) {
     const auto& table = outputs.traces[i].table;
@@ -144,9 +130,9 @@ Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
     }
     const std::string path = data_path(data_dir, fmt::format("contour-{}.dat", i + 1));
     write_file_atomically(path, dat);
-    plot_full += fmt::format("{} using 3:4 with lines ls {} title \"{}\", ", gnuplot_quote(path),
+    plot_full += fmt::format("{} using 3:4 with lines ls {} title '{}', ", gnuplot_quote(path),
                              line_style(i), run_title(i));
-    plot_zoom += fmt::format("{} using 7:8 with lines ls {} title \"{}\", ", gnuplot_quote(path),
+    plot_zoom += fmt::format("{} using 7:8 with lines ls {} title '{}', ", gnuplot_quote(path),
                              line_style(i), run_title(i));
     if (i + 1 == outputs.traces.size()) {  // desired last, on top of the runs that hide it
       const std::string first_path = data_path(data_dir, "contour-1.dat");
@@ -178,7 +164,7 @@ Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
       "set label 1 'zoom' at {x1:.6f},{y1:.6f} offset 0.5,0.5 tc rgb '#e6550d' front\n"
       "{full}\n"
       "unset object 1\nunset label 1\nset autoscale\n"
-      "set title \"Zoom ({w:.0f} {mu}m square) where {first}'s error peaks{window}\" font ',12'\n"
+      "set title 'Zoom ({w:.0f} {mu}m square) where {first}\xE2\x80\x99s error peaks{window}' font ',12'\n"
       "set xrange [{mh:.4f}:{ph:.4f}]\nset yrange [{mh:.4f}:{ph:.4f}]\n"
       "set xlabel 'x {cx} mm [{mu}m]'\nset ylabel 'y {cy} mm [{mu}m]'\n"
       "set key bottom right box opaque samplen 3 font ',10'\n"
@@ -189,7 +175,7 @@ Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
       fmt::arg("y1", cy_mm + half_mm), fmt::arg("full", plot_full), fmt::arg("zoom", plot_zoom),
       fmt::arg("w", 2 * half_um), fmt::arg("cx", offset(cx_mm)), fmt::arg("cy", offset(cy_mm)), fmt::arg("mh", -half_um),
       fmt::arg("ph", half_um), fmt::arg("mu", "\xC2\xB5"),
-      fmt::arg("first", plain(outputs.traces.front().label)), fmt::arg("window", window_note(outputs)));
+      fmt::arg("first", gnuplot_text(outputs.traces.front().label)), fmt::arg("window", window_note(outputs)));
   return figure;
 }
 
@@ -220,8 +206,8 @@ Figure contour_error_figure(const SimOutputs& outputs, const std::string& data_d
     const std::string path = data_path(data_dir, fmt::format("contour_error-{}.dat", i + 1));
     write_file_atomically(path, dat);
     body += i + 1 == n ? "set xlabel 'time [s]'\nset format x '%g'\n" : "unset xlabel\nset format x ''\n";
-    body += fmt::format("plot {} using 1:2 with lines ls {} title \"{}  (max |e_c| {:.2f} {}m)\"\n",
-                        gnuplot_quote(path), line_style(i), plain(outputs.traces[i].label), max_um,
+    body += fmt::format("plot {} using 1:2 with lines ls {} title '{}  (max |e_c| {:.2f} {}m)'\n",
+                        gnuplot_quote(path), line_style(i), gnuplot_text(outputs.traces[i].label), max_um,
                         "\xC2\xB5");
   }
   figure.body = body;
@@ -238,8 +224,8 @@ Figure e_sum_figure(const SimOutputs& outputs, const std::string& data_dir) {
     }
     const std::string path = data_path(data_dir, fmt::format("e_sum-{}.dat", i + 1));
     write_file_atomically(path, dat);
-    plot += fmt::format("{} using 1:2 with linespoints ls {} title \"{}\"{}", gnuplot_quote(path),
-                        line_style(static_cast<std::size_t>(i)), plain(run.label()),
+    plot += fmt::format("{} using 1:2 with linespoints ls {} title '{}'{}", gnuplot_quote(path),
+                        line_style(static_cast<std::size_t>(i)), gnuplot_text(run.label()),
                         i + 1 < outputs.study.runs_size() ? ", " : "");
   }
   Figure figure;
@@ -284,7 +270,7 @@ Figure tau_figure(const SimOutputs& outputs, const std::string& data_dir) {
   Figure figure;
   figure.name = "tau_histogram";
   figure.body = std::string(kStyle) + fmt::format(
-      "set title \"Loop delay {tau} of the x axis: {run}, last iteration ({n} setpoints)\" font ',13'\n"
+      "set title 'Loop delay {tau} of the x axis: {run}, last iteration ({n} setpoints)' font ',13'\n"
       "set xlabel '{tau} = setpoint arrival - sample time [ms]'\nset ylabel 'setpoints per bin'\n"
       "set style fill solid 0.55 border lc rgb '#1f4e79'\nset boxwidth {w:.6f} absolute\n"
       "set yrange [0:*]\nset offsets graph 0.1, graph 0.1, graph 0.15, 0\n{xrange}"
@@ -294,7 +280,7 @@ Figure tau_figure(const SimOutputs& outputs, const std::string& data_dir) {
       "plot {path} using 1:2 with boxes lc rgb '#4a90d9' title 'bin width {w:.3f} ms', "
       "NaN with lines lc rgb '#d62728' lw 2 dt 2 title 'mean {mean:.3f} ms', "
       "NaN with lines lc rgb '#ff7f0e' lw 2 dt 3 title 'p99 {p99:.3f} ms'\n",
-      fmt::arg("tau", "\xCF\x84"), fmt::arg("run", plain(trace.label)), fmt::arg("n", taus_ms.size()),
+      fmt::arg("tau", "\xCF\x84"), fmt::arg("run", gnuplot_text(trace.label)), fmt::arg("n", taus_ms.size()),
       fmt::arg("w", width), fmt::arg("mean", mean),
       fmt::arg("xrange", hi > lo ? std::string() : fmt::format("set xrange [{:.6f}:{:.6f}]\n", lo - 10 * width, lo + 10 * width)), fmt::arg("p99", p99), fmt::arg("path", gnuplot_quote(path)));
   return figure;
@@ -321,12 +307,12 @@ std::string metric_label(const std::string& metric) {
     }
   }
   const std::size_t underscore = name.find('_');
-  std::string head = name.substr(0, underscore);
+  std::string head = gnuplot_text(name.substr(0, underscore));
   if (head == "tau") head = "\xCF\x84";
   if (underscore == std::string::npos) return head;
   std::string rest = name.substr(underscore + 1);
   std::replace(rest.begin(), rest.end(), '_', ' ');
-  return head + "_{" + rest + "}";
+  return head + "_{" + gnuplot_text(rest) + "}";
 }
 
 }  // namespace
@@ -343,9 +329,7 @@ SimOutputs load_sim_outputs(const std::string& dir) {
   }
   if (outputs.study.runs_size() == 0) throw std::invalid_argument(results.string() + ": no runs");
   for (int i = 0; i < outputs.study.runs_size(); ++i) {
-    std::string name = outputs.study.runs(i).label();
-    std::replace(name.begin(), name.end(), '+', '_');
-    const fs::path trace = root / kSimTracesDir / fmt::format("{}-{}.csv", i + 1, name);
+    const fs::path trace = root / kSimTracesDir / trace_file_name(static_cast<std::size_t>(i), outputs.study.runs(i).label());
     outputs.traces.push_back({outputs.study.runs(i).label(), CsvTable::read(trace.string())});
     if (outputs.traces.back().table.rows() == 0) throw std::invalid_argument(trace.string() + ": no rows");
     TraceColumns check(outputs.traces.back().table);  // throws naming a missing column
@@ -426,16 +410,16 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
       const std::string path = data_path(data_dir, fmt::format("sweep-{}-{}.dat", metric, s + 1));
       write_file_atomically(path, dat);
       if (!has_point) {  // keep it in the legend, without a line
-        elements.push_back(fmt::format("NaN with linespoints ls {} title \"{} (unstable everywhere)\"",
-                                       line_style(s), plain(series)));
+        elements.push_back(fmt::format("NaN with linespoints ls {} title '{} (unstable everywhere)'",
+                                       line_style(s), gnuplot_text(series)));
         continue;
       }
-      const std::string title = plain(series) + (unstable[series] > 0
+      const std::string title = gnuplot_text(series) + (unstable[series] > 0
                                                      ? fmt::format(" ({} unstable)", unstable[series])
                                                      : std::string());
       elements.push_back(fmt::format(
           "{p} using 1:3:4 with filledcurves ls {ls} fs transparent solid 0.18 noborder notitle, "
-          "{p} using 1:2 with linespoints ls {ls} title \"{t}\"",
+          "{p} using 1:2 with linespoints ls {ls} title '{t}'",
           fmt::arg("p", gnuplot_quote(path)), fmt::arg("ls", line_style(s)), fmt::arg("t", title)));
     }
     if (!any_point) {
@@ -453,8 +437,8 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
     figure.height_px = 650;
     const std::string label = metric_label(metric) + (unit.empty() ? "" : " [" + unit + "]");
     figure.body = std::string(kStyle) + fmt::format(
-        "set title \"{label} of the last iteration vs loop-delay upper bound (mean over seeds, band: min-max)\" font ',12'\n"
-        "set xlabel 'loop delay upper bound [ms]'\nset ylabel \"{label}\"\n"
+        "set title '{label} of the last iteration vs loop-delay upper bound (mean over seeds, band: min-max)' font ',12'\n"
+        "set xlabel 'loop delay upper bound [ms]'\nset ylabel '{label}'\n"
         "{log}set key outside right top vertical box samplen 2 font ',10'\n"
         "set datafile missing 'NaN'\n{room}{plot}\n",
         fmt::arg("label", label), // Log scale only when the values span more than about a decade and a half: fewer decades

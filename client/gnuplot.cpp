@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "client/study_report.hpp"
+#include "client/exclusive_file.hpp"
 
 extern char** environ;
 
@@ -37,7 +37,7 @@ int run_with_timeout(const std::string& program, const std::string& script,
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   std::vector<std::string> arguments{program, script};
   std::vector<char*> argv;
@@ -82,12 +82,34 @@ std::optional<std::string> find_gnuplot() {
 }
 
 std::string gnuplot_quote(const std::string& text) {
-  std::string quoted = "'";
   for (const char c : text) {
-    quoted += c;
-    if (c == '\'') quoted += '\'';
+    const auto byte = static_cast<unsigned char>(c);
+    // gnuplot's own escape of a quote ('') fails where two come together: none are let in.
+    if (byte < 0x20 || byte == 0x7f || c == '\'') {
+      throw std::invalid_argument("path for gnuplot: expected no control characters (line breaks, tabs) and no ' in '" +
+                                  gnuplot_text(text) + "'");
+    }
   }
-  return quoted + "'";
+  return "'" + text + "'";
+}
+
+std::string gnuplot_text(const std::string& text) {
+  std::string out;
+  out.reserve(text.size() + 8);
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      out += ' ';
+    } else if (c == '\'' || c == '`') {
+      out += "\xE2\x80\x99";  // shown as a typographic apostrophe: no quote reaches the script
+    } else if (c == '_' || c == '^' || c == '@' || c == '&' || c == '{' || c == '}' || c == '~' || c == '\\') {
+      out += '\\';  // one backslash: enhanced-text escape inside single quotes
+      out += c;
+    } else {
+      out += c;
+    }
+  }
+  return out;
 }
 
 void require_gnuplot() {
@@ -109,13 +131,13 @@ std::vector<std::string> render_figures(const std::vector<Figure>& figures,
   std::filesystem::create_directories(data, error);
   if (error) throw std::runtime_error(out_dir + ": cannot create the figure directory");
 
-  std::string script = "# netmc figures; edit and redraw with `gnuplot figures.gp`\n";
+  std::string script = "# netmc figures; edit and redraw with: gnuplot figures.gp\n";
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> outputs;  // partial -> final
   for (const auto& figure : figures) {
     for (const bool svg : {false, true}) {
       if (svg ? !formats.svg : !formats.png) continue;
       const auto target = out / (figure.name + (svg ? ".svg" : ".png"));
-      const auto partial = std::filesystem::path(target.string() + ".partial");
+      const auto partial = create_exclusive_temporary(target);  // gnuplot writes here
       outputs.emplace_back(partial, target);
       script += "reset session\n";
       script += svg ? "set terminal svg size " + std::to_string(figure.width_px) + "," +

@@ -30,8 +30,17 @@ std::optional<std::string> find_gnuplot();
 // when gnuplot is missing.
 void require_gnuplot();
 
-// A path quoted for a gnuplot script ('...' with ' doubled).
+// A path quoted for a gnuplot script ('...'). gnuplot runs backquoted text as a shell command
+// except inside single quotes, a line break would end the command, and its escape of a quote
+// ('') fails where two meet: throws std::invalid_argument for a path with a control character
+// or a single quote.
 std::string gnuplot_quote(const std::string& text);
+
+// Text from outside (a run label, a file's content) as the inside of a single-quoted gnuplot
+// string in enhanced-text mode, shown as it reads: quotes and backquotes become typographic
+// apostrophes, enhanced-text markup is escaped and control characters become spaces, so it can
+// neither leave the string nor reach a shell. Callers add the surrounding quotes.
+std::string gnuplot_text(const std::string& text);
 
 // Writes DIR/data/figures.gp and runs it; returns the files written. Throws
 // std::runtime_error when gnuplot is missing, fails (its message) or exceeds `timeout`.

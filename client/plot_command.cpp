@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
@@ -83,6 +84,14 @@ OUT/data/ (figures.gp) for editing.)");
       if (metrics.empty()) throw std::invalid_argument("--metric: expected COLUMN[,COLUMN...] such as e_max_m");
       const CsvTable table = CsvTable::read(flags->sweep_csv);
       for (const auto& metric : metrics) {
+        // The name becomes part of a file name and a figure label: letters, digits, _ only.
+        const bool plain_name = !metric.empty() && metric.size() <= 64 &&
+                                std::all_of(metric.begin(), metric.end(), [](char c) {
+                                  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+                                });
+        if (!plain_name) {
+          throw std::invalid_argument("--metric: expected column names of letters, digits and _ (such as e_max_m)");
+        }
         if (!table.has_column(metric)) {
           throw std::invalid_argument(fmt::format("--metric: '{}' is not a column of {} (e.g. e_max_m, "
                                                   "e_sum_m, e_rms_m, tau_p99_s)", metric, flags->sweep_csv));

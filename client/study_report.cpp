@@ -224,26 +224,14 @@ void check_output_path(const std::string& path, const std::string& flag) {
   }
 }
 
-void write_file_atomically(const std::string& path, const std::string& content) {
-  const std::filesystem::path target(path);
-  const std::filesystem::path temporary = target.string() + ".partial";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    if (!file) throw std::runtime_error(path + ": cannot open for writing");
-    file << content;
-    file.close();
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw std::runtime_error(path + ": write failed");
-    }
+std::string trace_file_name(std::size_t index, const std::string& label) {
+  std::string name = label.substr(0, 64);
+  for (char& c : name) {
+    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+                       c == '-' || c == '_';
+    if (!plain) c = '_';
   }
-  std::error_code error;
-  std::filesystem::rename(temporary, target, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw std::runtime_error(path + ": cannot rename into place");
-  }
+  return fmt::format("{}-{}.csv", index + 1, name);
 }
 
 void write_trace_directory(const std::string& directory, const std::vector<RunOutcome>& outcomes) {
@@ -253,9 +241,7 @@ void write_trace_directory(const std::string& directory, const std::vector<RunOu
     throw std::runtime_error(directory + ": cannot create the trace directory");
   }
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
-    std::string name = outcomes[i].result.label();
-    std::replace(name.begin(), name.end(), '+', '_');
-    write_file_atomically((std::filesystem::path(directory) / fmt::format("{}-{}.csv", i + 1, name)).string(),
+    write_file_atomically((std::filesystem::path(directory) / trace_file_name(i, outcomes[i].result.label())).string(),
                           trace_csv(outcomes[i].last_trace));
   }
 }

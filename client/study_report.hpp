@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "client/exclusive_file.hpp"
 #include "client/presets.hpp"
 #include "client/study_runner.hpp"
 
@@ -21,9 +22,11 @@ std::string trace_csv(const std::vector<sim::CycleTrace>& trace);
 // Before a long run: throws std::invalid_argument("<flag>: ...") when `path` cannot be
 // created because its directory is missing or not writable.
 void check_output_path(const std::string& path, const std::string& flag);
-// Writes `content` to `path` atomically; throws std::runtime_error naming the path.
-void write_file_atomically(const std::string& path, const std::string& content);
 // One CSV per run: DIR/<index>-<controller>.csv; the directory is created if needed.
+// The trace file of run `index` (0-based): "<index + 1>-<label>.csv" with every character of the
+// label outside A-Z a-z 0-9 . - _ replaced by _ and at most 64 of them, so a label (from a spec
+// or a results file) cannot name a path.
+std::string trace_file_name(std::size_t index, const std::string& label);
 void write_trace_directory(const std::string& directory, const std::vector<RunOutcome>& outcomes);
 
 }  // namespace netmc::cli

@@ -69,7 +69,7 @@ TEST(NetmcCli, ThreeAxisTracesHaveAColumnPerAxis) {
   const auto traces = scratch("spatial-traces");
   const Result result = run("sim --preset thesis-spatial --duration 0.1s --csv " + traces.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  std::ifstream file(traces / "1-gtcf-sarc, 3 axes.csv");
+  std::ifstream file(traces / "1-gtcf-sarc__3_axes.csv");
   ASSERT_TRUE(file) << "no trace of the first run";
   std::string header, first_row;
   std::getline(file, header);

@@ -5,11 +5,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "tests/client/netmc_in_process.hpp"
 #include "client/gnuplot.hpp"
+#include "client/study_report.hpp"
 
 namespace netmc::cli {
 namespace {
@@ -32,6 +35,19 @@ std::string head(const fs::path& path, std::size_t bytes) {
   return text;
 }
 
+// Temporaries of figures (NAME.png.XXXXXX, NAME.svg.XXXXXX) left in a directory.
+int leftovers(const fs::path& dir) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    for (const char* kind : {".png.", ".svg."}) {
+      const auto at = name.find(kind);
+      if (at != std::string::npos && name.size() == at + 5 + 6) ++count;
+    }
+  }
+  return count;
+}
+
 void expect_figure(const fs::path& dir, const std::string& name) {
   const auto png = dir / (name + ".png");
   const auto svg = dir / (name + ".svg");
@@ -41,7 +57,7 @@ void expect_figure(const fs::path& dir, const std::string& name) {
   EXPECT_GT(fs::file_size(svg), 5000u) << svg;
   EXPECT_EQ(head(png, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << png;
   EXPECT_NE(head(svg, 400).find("<svg"), std::string::npos) << svg;
-  EXPECT_FALSE(fs::exists(dir / (name + ".png.partial")));
+  EXPECT_EQ(leftovers(dir), 0) << dir;
 }
 
 TEST(PlotRender, SimPlotDrawsTheStandardFigures) {
@@ -137,8 +153,82 @@ TEST(PlotRender, FailingGnuplotLeavesNoFigureAndSaysWhy) {
   }
   unsetenv("NETMC_GNUPLOT");
   EXPECT_FALSE(fs::exists(dir / "empty.png"));
-  EXPECT_FALSE(fs::exists(dir / "empty.png.partial"));
+  EXPECT_EQ(leftovers(dir), 0);
   fs::remove_all(dir);
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  file << text;
+}
+
+void replace_all(std::string& text, const std::string& from, const std::string& to) {
+  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+    text.replace(at, from.size(), to);
+  }
+}
+
+// gnuplot runs backquoted text as a shell command anywhere but inside single quotes. A run label
+// from a spec file, a results.json or a sweep CSV with a planted command must be drawn as text.
+TEST(PlotRender, HostileLabelsAreDrawnAsTextNeverRun) {
+  if (!find_gnuplot()) GTEST_SKIP() << "gnuplot is not installed (Debian package gnuplot-nox)";
+  const auto dir = scratch("hostile");
+  fs::create_directories(dir);
+  const auto marker = [&](int i) { return dir / ("ran-" + std::to_string(i)); };
+  // 1. netmc sim --spec with a hostile name (command, both quotes, markup, a line break), --plot.
+  const auto spec = dir / "evil.json";
+  write_text(spec, R"({"name": "x`touch )" + marker(1).string() +
+                       R"(`\" ' @{_^&~\\} \nset output", "duration_s": 0.5,
+                       "trajectory": {"circle": {"radius_m": 0.01, "center_x_m": 0.05, "center_y_m": 0.05, "period_s": 8}}})");
+  const auto sim_dir = dir / "sim";
+  ASSERT_EQ(netmc({"sim", "--spec", spec.string(), "--plot", sim_dir.string(), "-q"}), 0);
+  expect_figure(sim_dir, "contour");
+  EXPECT_FALSE(fs::exists(marker(1)));
+  EXPECT_EQ(read_text(sim_dir / "data" / "figures.gp").find('`'), std::string::npos);
+
+  // 2. netmc plot --sim with a results.json whose label was edited.
+  std::string results = read_text(sim_dir / "results.json");
+  const std::string key = R"("label": ")";
+  const auto label_at = results.find(key);
+  ASSERT_NE(label_at, std::string::npos);
+  const auto start = label_at + key.size();
+  const auto end = results.find("\",\n", start);  // the label holds an escaped quote itself
+  const std::string hostile = "`touch " + marker(2).string() + "`";
+  results.replace(start, end - start, hostile);
+  write_text(sim_dir / "results.json", results);
+  // The run's trace under the name the edited label gives it (the only trace there).
+  fs::path trace;
+  for (const auto& entry : fs::directory_iterator(sim_dir / "traces")) trace = entry.path();
+  fs::rename(trace, sim_dir / "traces" / trace_file_name(0, hostile));
+  ASSERT_EQ(netmc({"plot", "--sim", sim_dir.string(), "--out", (dir / "again").string(), "--format", "png"}), 0);
+  EXPECT_FALSE(fs::exists(marker(2)));
+
+  // 3. netmc plot --sweep with a run column carrying a command.
+  const auto csv = dir / "sweep.csv";
+  ASSERT_EQ(netmc({"sweep", "--controller", "adrc", "--delay-max", "1ms:2ms:2", "--seeds", "1", "--iterations",
+                   "1", "--duration", "0.5s", "--csv", csv.string(), "-q"}),
+            0);
+  std::string table = read_text(csv);
+  replace_all(table, ",adrc,", ",`touch " + marker(3).string() + "`,");
+  write_text(csv, table);
+  ASSERT_EQ(netmc({"plot", "--sweep", csv.string(), "--metric", "e_max_m"}), 0);
+  expect_figure(dir, "sweep-e_max_m");
+  EXPECT_FALSE(fs::exists(marker(3)));
+  // A metric name is a column name, not a path or a label to interpret.
+  EXPECT_NE(netmc({"plot", "--sweep", csv.string(), "--metric", "../e_max_m"}), 0);
+  fs::remove_all(dir);
+}
+
+TEST(Gnuplot, TextCannotLeaveItsStringAndPathsWithLineBreaksAreRefused) {
+  EXPECT_EQ(gnuplot_text("a`b`'c\nd_e"), "a\xE2\x80\x99" "b\xE2\x80\x99\xE2\x80\x99" R"(c d\_e)");
+  EXPECT_EQ(gnuplot_quote("/tmp/figures"), "'/tmp/figures'");
+  EXPECT_THROW(gnuplot_quote("/tmp/it's"), std::invalid_argument);
+  EXPECT_THROW(gnuplot_quote("/tmp/a\nset output"), std::invalid_argument);
 }
 
 }  // namespace
