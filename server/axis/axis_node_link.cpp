@@ -127,8 +127,14 @@ void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::stri
   status.plant(config_.plant);
   status.clock(config_.clock);
   status.time_base(dds::time_base_name(config_.time_base));
-  status.health(health);
-  status.detail(detail.substr(0, 255));
+  {
+    // A latched fault is what the node is, whatever it is doing otherwise.
+    std::lock_guard lock(mutex_);
+    std::string faults;
+    for (const auto& [axis, reason] : faults_) faults += (faults.empty() ? "" : "; ") + axis + ": " + reason;
+    status.health(faults.empty() ? health : netmc::dds::NODE_FAULT);
+    status.detail((faults.empty() ? detail : faults + "; reset on the axis's host (SIGUSR1)").substr(0, 255));
+  }
   status.participant(context_.identity());
   {
     std::lock_guard lock(mutex_);
@@ -191,7 +197,60 @@ void AxisNodeLink::release(const std::string& axis, const std::string& server, s
   if (it != holds_.end() && it->second.server == server && it->second.job_id == job_id) holds_.erase(it);
 }
 
+void AxisNodeLink::report_fault(const std::string& axis, JobAxis& job_axis, const std::string& server,
+                                std::uint32_t iteration) {
+  if (job_axis.fault_reported || !job_axis.endpoint || !job_axis.endpoint->fault()) return;
+  job_axis.fault_reported = true;
+  const std::string reason = *job_axis.endpoint->fault();
+  {
+    std::lock_guard lock(mutex_);
+    faults_.emplace(axis, reason);
+  }
+  std::cerr << "netmc-axis " << config_.node << ": axis " << axis << " FAULT (job " << job_axis.job_id << "): " << reason
+            << "; command held at zero until reset on this host (SIGUSR1)" << std::endl;
+  netmc::dds::AxisEvent event;
+  event.axis(axis);
+  event.server(server);
+  event.job_id(job_axis.job_id);
+  event.iteration(iteration);
+  event.kind(netmc::dds::AXIS_FAULT);
+  event.detail(("axis " + axis + " tripped: " + reason).substr(0, 255));
+  publish_event(event);
+  publish_status(netmc::dds::NODE_FAULT, "");
+}
+
+void AxisNodeLink::reset_faults() {
+  {
+    std::lock_guard lock(mutex_);
+    if (faults_.empty()) return;
+    faults_.clear();
+  }
+  std::cerr << "netmc-axis " << config_.node << ": faults reset by the operator" << std::endl;
+  publish_status(netmc::dds::NODE_IDLE, "ready (faults reset)");
+}
+
+std::atomic<bool>& fault_reset_requested() {
+  static std::atomic<bool> requested{false};
+  return requested;
+}
+
+void AxisNodeLink::poll_fault_reset() {
+  if (fault_reset_requested().exchange(false)) reset_faults();
+}
+
+bool AxisNodeLink::faulted() const {
+  std::lock_guard lock(mutex_);
+  return !faults_.empty();
+}
+
 JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
+  {
+    std::lock_guard lock(mutex_);
+    if (const auto it = faults_.find(begin.axis()); it != faults_.end()) {
+      throw std::runtime_error("axis " + begin.axis() + " is in fault (" + it->second +
+                               "); its operator resets it on the axis's host (SIGUSR1 to netmc-axis, or a restart)");
+    }
+  }
   // The server must read this node's feedback before the first sample leaves: wait for its
   // reader by identity (a dead server's reader, still counted by DDS, does not do).
   const AxisWriters& writers = writers_of(begin.axis());
@@ -214,7 +273,7 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
   if (it == job_axes.end()) throw std::invalid_argument("axis " + begin.axis() + " is not an axis of the job");
   const auto index = static_cast<std::size_t>(it - job_axes.begin());
   JobAxis axis;
-  axis.endpoint = std::make_unique<sim::AxisEndpoint>(job.axes.at(index)->clone(), job, index);
+  axis.endpoint = std::make_unique<sim::AxisEndpoint>(job.axes.at(index)->clone(), job, index, config_.limits);
   axis.job_id = begin.job_id();
   axis.cycles = job.cycles();
   axis.sample_period_s = job.sample_period_s;

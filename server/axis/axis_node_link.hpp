@@ -29,6 +29,7 @@ struct AxisNodeConfig {
   dds::TimeBase time_base = dds::TimeBase::monotonic;
   // How long a holding server may stay silent before another may take the axes.
   std::chrono::milliseconds hold_lease{10000};
+  sim::AxisLimits limits;              // the operator's, on every axis of this node
 };
 
 // The node's name or one of its axes belongs to a live node already.
@@ -47,6 +48,7 @@ struct JobAxis {
   std::uint64_t job_id = 0;
   std::size_t cycles = 0;
   double sample_period_s = 0.0;
+  bool fault_reported = false;
 };
 
 class AxisNodeLink {
@@ -78,8 +80,18 @@ class AxisNodeLink {
   bool from_holder(const std::string& axis, const std::string& server, std::uint64_t job_id);
   void release(const std::string& axis, const std::string& server, std::uint64_t job_id);
 
-  // From the BEGIN_ITERATION of iteration 1: the job's axis, built from its spec.
+  // From the BEGIN_ITERATION of iteration 1: the job's axis, built from its spec. Throws for an
+  // axis in fault (named with its reason) or a spec this node cannot run.
   JobAxis start_job(const netmc::dds::JobControl& begin);
+
+  // Faults latch per axis until the operator resets them on this host (SIGUSR1 to netmc-axis,
+  // or a restart): a server cannot clear them. report_fault latches the endpoint's fault (once
+  // per job axis), tells the job's server (AXIS_FAULT) and the node's log; the status shows it.
+  void report_fault(const std::string& axis, JobAxis& job_axis, const std::string& server, std::uint32_t iteration);
+  void reset_faults();
+  bool faulted() const;
+  // Called by the node's loop: resets the faults if the operator asked (fault_reset_requested).
+  void poll_fault_reset();
 
   // The node's own clock (its --time-base).
   double now_s() const { return dds::time_base_now_s(config_.time_base); }
@@ -110,13 +122,17 @@ class AxisNodeLink {
   dds::SampleReader<netmc::dds::Setpoint> setpoints_;
   dds::SampleReader<netmc::dds::ClockProbe> probes_;
 
-  std::mutex mutex_;  // status and holds: the probe thread and the node's thread
+  mutable std::mutex mutex_;  // status, holds and faults: the probe thread and the node's thread
   std::map<std::string, Hold> holds_;  // by axis
+  std::map<std::string, std::string> faults_;  // by axis: the reason
 
   bool refused_ = false;
   std::atomic<bool> stop_{false};
   std::thread probe_thread_;
 };
+
+// Set by netmc-axis's SIGUSR1 handler (async-signal-safe), taken by poll_fault_reset.
+std::atomic<bool>& fault_reset_requested();
 
 // Copies setpoints applied by the actuator into a feedback sample.
 void append_applied(netmc::dds::Feedback& feedback, const std::vector<sim::AppliedSetpoint>& applied);

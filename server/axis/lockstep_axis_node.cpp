@@ -19,6 +19,7 @@ void LockstepAxisNode::serve(const std::atomic<bool>& stop) {
   waitset.attach_condition(link_.setpoints().condition());
   auto last_status = std::chrono::steady_clock::now();
   while (!stop.load()) {
+    link_.poll_fault_reset();
     while (auto control = link_.control().try_take()) handle(*control);
     while (auto setpoint = link_.setpoints().try_take()) handle(*setpoint);
     if (std::chrono::steady_clock::now() - last_status >= kStatusPeriod) {
@@ -92,11 +93,9 @@ void LockstepAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   if (!axis.endpoint || axis.job_id != setpoint.job_id() || !link_.from_holder(setpoint.axis(), setpoint.server(), setpoint.job_id())) {
     return;
   }
-  // Nothing but a finite command of this job's cycles reaches the plant.
-  if (!std::isfinite(setpoint.command()) || !std::isfinite(setpoint.send_time_s()) ||
-      setpoint.cycle() >= axis.cycles) {
-    return;
-  }
+  // Nothing but a setpoint of this job's cycles is looked at; a non-finite command trips the axis.
+  if (!std::isfinite(setpoint.send_time_s()) || setpoint.cycle() >= axis.cycles) return;
+  if (!std::isfinite(setpoint.command())) axis.endpoint->trip("command not finite (cycle " + std::to_string(setpoint.cycle()) + ")");
   Feedback feedback;
   feedback.axis(setpoint.axis());
   feedback.server(setpoint.server());
@@ -114,6 +113,7 @@ void LockstepAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   }
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
   feedback.stale_setpoints(axis.endpoint->stale_setpoints());
+  link_.report_fault(setpoint.axis(), axis, setpoint.server(), setpoint.iteration());  // before the sample
   link_.publish(feedback);
 }
 

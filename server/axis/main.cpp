@@ -19,6 +19,7 @@ namespace {
 std::atomic<bool> g_stop{false};
 
 void on_signal(int) { g_stop.store(true); }
+void on_reset(int) { netmc::axis::fault_reset_requested().store(true); }
 
 // Before it serves, a node listens this long to the others' status (three of their periods),
 // so a live node with the same name or axis is seen.
@@ -58,6 +59,15 @@ int main(int argc, char** argv) {
   app.add_option("--watchdog", watchdog_ms,
                  "Realtime: milliseconds without a setpoint before the axis holds (command 0)")
       ->check(CLI::Range(1, 60000));
+  // The operator's limits (SI units; each applies to every axis of the node).
+  app.add_option("--command-limit", config.limits.command,
+                 "Largest |command| the drive takes, in the plant's input unit; a larger one trips the axis");
+  std::string position_window;
+  app.add_option("--position-window", position_window,
+                 "Travel MIN:MAX in metres; leaving it trips the axis (e.g. -0.05:0.25)");
+  app.add_option("--velocity-limit", config.limits.velocity_m_s, "Largest |velocity| in m/s; beyond it trips the axis");
+  app.add_option("--slew-limit", config.limits.slew_per_s,
+                 "Largest change of the applied command per second (units/s): steps are ramped, not tripped");
   netmc::dds::add_time_base_option(app, config.time_base);
   netmc::dds::add_dds_options(app, dds);
   netmc::realtime::RealtimeScheduling scheduling;
@@ -73,6 +83,21 @@ int main(int argc, char** argv) {
   }
   try {
     config.axes = netmc::axis::parse_axis_list(axes);
+    if (!position_window.empty()) {
+      const auto colon = position_window.find(':', 1);  // MIN may be negative
+      std::size_t used_min = 0, used_max = 0;
+      try {
+        if (colon == std::string::npos) throw std::invalid_argument("no colon");
+        config.limits.position_min_m = std::stod(position_window.substr(0, colon), &used_min);
+        config.limits.position_max_m = std::stod(position_window.substr(colon + 1), &used_max);
+      } catch (const std::exception&) {
+        used_min = 0;
+      }
+      if (used_min != colon || used_max != position_window.size() - colon - 1) {
+        throw std::invalid_argument("--position-window: expected MIN:MAX in metres, got '" + position_window + "'");
+      }
+    }
+    config.limits.validate();
     netmc::job::check_name(config.node, "--node");
     config.clock = clock;
     dds.name = config.node;
@@ -84,7 +109,9 @@ int main(int argc, char** argv) {
     netmc::dds::DdsContext context(dds);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
+    std::signal(SIGUSR1, on_reset);
     std::cout << "netmc-axis " << config.node << ": axes " << axes << ", plant " << config.plant
+              << ", limits " << config.limits.describe()
               << ", clock " << clock << " (" << netmc::dds::time_base_name(config.time_base)
               << "), DDS domain " << dds.domain_id << " (" << context.describe_transport()
               << "), participant " << context.identity() << ", " << scheduling_outcome.describe() << std::endl;

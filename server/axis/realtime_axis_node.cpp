@@ -36,6 +36,7 @@ void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
   waitset.attach_condition(link_.setpoints().condition());
   auto next_status = Clock::now();
   while (!stop.load()) {
+    link_.poll_fault_reset();
     const auto now = Clock::now();
     // Due samples first: a sample is taken at its time, then the setpoints that came meanwhile
     // are applied (on arrival, as they would be anyway: after the sample instant).
@@ -161,9 +162,11 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
     ++axis.commands_received;
     return;
   }
-  // Nothing but a finite command of this job's cycles reaches the plant.
-  if (!std::isfinite(setpoint.command()) || !std::isfinite(setpoint.send_time_s()) ||
-      setpoint.cycle() >= axis.cycles) {
+  // Nothing but a setpoint of this job's cycles is looked at; a non-finite command trips the axis.
+  if (!std::isfinite(setpoint.send_time_s()) || setpoint.cycle() >= axis.cycles) return;
+  if (!std::isfinite(setpoint.command())) {
+    axis.endpoint->trip("command not finite (cycle " + std::to_string(setpoint.cycle()) + ")");
+    link_.report_fault(setpoint.axis(), axis, axis.server, axis.iteration);
     return;
   }
   const auto arrived = Clock::now();
@@ -216,6 +219,7 @@ void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clo
     axis.endpoint->hold();
     axis.holding = true;
   }
+  link_.report_fault(axis_name, axis, axis.server, axis.iteration);
   set_sample(feedback, k, t, axis.endpoint->sample());
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
   feedback.stale_setpoints(axis.endpoint->stale_setpoints());

@@ -5,11 +5,11 @@
 namespace netmc::sim {
 
 AxisEndpoint::AxisEndpoint(std::unique_ptr<plant::AxisPlant> plant, const ContourJob& job,
-                           std::size_t axis)
+                           std::size_t axis, AxisLimits limits)
     : axis_(std::move(plant),
             // The sensor's noise stream runs on across iterations: ILC cannot learn the noise.
             plant::PositionSensor(job.sensor, job.seed, stream_id(StreamKind::sensor, axis, 0)),
-            job.command_limit),
+            job.command_limit, limits),
       downlink_(netsim::LinkModel(job.downlink.delay->clone(), job.downlink.loss->clone(),
                                   job_stream(job.seed, StreamKind::downlink, axis, 0))),
       seed_(job.seed),

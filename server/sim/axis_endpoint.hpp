@@ -28,8 +28,9 @@ struct AppliedSetpoint {
 
 class AxisEndpoint {
  public:
-  // Axis `axis` (its place in the group) of `job`.
-  AxisEndpoint(std::unique_ptr<plant::AxisPlant> plant, const ContourJob& job, std::size_t axis);
+  // Axis `axis` (its place in the group) of `job`, under its operator's `limits` (none in-process).
+  AxisEndpoint(std::unique_ptr<plant::AxisPlant> plant, const ContourJob& job, std::size_t axis,
+               AxisLimits limits = {});
 
   // Every iteration starts from rest at `start_position_m` with nothing in flight.
   void begin_iteration(std::size_t iteration, double start_position_m);
@@ -41,6 +42,9 @@ class AxisEndpoint {
   const std::vector<AppliedSetpoint>& advance_to(double end_time_s);
 
   void hold() { axis_.hold(); }
+  // The operator's limits tripped (SimulatedAxis::fault); a node reports it and stops.
+  const std::optional<std::string>& fault() const { return axis_.fault(); }
+  void trip(const std::string& reason) { axis_.trip(reason); }
 
   std::uint64_t lost_setpoints() const { return lost_; }
   std::uint64_t stale_setpoints() const { return axis_.stale_setpoints(); }

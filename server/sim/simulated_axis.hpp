@@ -5,12 +5,15 @@
 // dropped by sequence number; a lost setpoint leaves the last input in force.
 
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "netsim/delayed_channel.hpp"
 #include "netsim/freshness_filter.hpp"
 #include "plant/axis_plant.hpp"
 #include "plant/position_sensor.hpp"
+#include "server/sim/axis_limits.hpp"
 
 namespace netmc::sim {
 
@@ -18,9 +21,12 @@ class SimulatedAxis {
  public:
   using Delivery = netsim::DelayedChannel<double>::Delivery;
 
+  // `command_limit`: the job's drive saturation (clamps); `limits`: the axis operator's (trip).
   SimulatedAxis(std::unique_ptr<plant::AxisPlant> plant, plant::PositionSensor sensor,
-                double command_limit);
+                double command_limit, AxisLimits limits = {});
 
+  // Back to rest at `position` for a new iteration; a latched fault stays (only the operator
+  // clears it, see clear_fault).
   void reset(double position);
   // Watchdog: no setpoint in time, so the drive is commanded to stand still.
   void hold() { input_ = 0.0; }
@@ -30,6 +36,12 @@ class SimulatedAxis {
 
   const plant::AxisPlant& plant() const { return *plant_; }
   double input() const { return input_; }
+  // Why the axis tripped (the first reason), nullopt while it is healthy. A faulted axis
+  // applies no command: its input stays zero.
+  const std::optional<std::string>& fault() const { return fault_; }
+  // A command refused before it reaches the plant: trips the axis (non-finite, beyond the limit).
+  void trip(const std::string& reason);
+  void clear_fault() { fault_.reset(); }
   std::uint64_t stale_setpoints() const { return freshness_.stale_dropped(); }
 
  private:
@@ -37,8 +49,13 @@ class SimulatedAxis {
   plant::PositionSensor sensor_;
   netsim::FreshnessFilter freshness_;
   double command_limit_;
+  AxisLimits limits_;
   double input_ = 0.0;
   double time_s_ = 0.0;
+  double input_changed_s_ = 0.0;  // when the applied input last changed (slew limit)
+  std::optional<std::string> fault_;
+
+  void check_state();  // trips on a position or velocity beyond the limits
 };
 
 }  // namespace netmc::sim
