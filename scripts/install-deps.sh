@@ -15,5 +15,5 @@ apt-get install -y --no-install-recommends \
   libboost-dev libboost-system-dev \
   libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev \
   gnuplot-nox \
-  iproute2 nftables util-linux fastdds-tools rt-tests \
+  iproute2 nftables util-linux fastdds-tools rt-tests openssl \
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -206,6 +206,33 @@ class DdsContext::MatchTracker : public DataWriterListener, public DataReaderLis
   std::map<std::string, int> endpoints_;
 };
 
+namespace {
+
+// Fast DDS's built-in security plugins (PKI-DH authentication, access control with signed
+// governance and permissions, AES-GCM): the standard participant properties.
+void add_security_properties(DomainParticipantQos& qos, const std::string& directory, const std::string& identity) {
+  const std::filesystem::path dir = std::filesystem::absolute(directory);
+  const auto file = [&](const std::string& name) {
+    const auto path = dir / name;
+    if (!std::filesystem::is_regular_file(path)) {
+      throw std::invalid_argument("--security: " + path.string() + " not found (scripts/make-lab-pki.sh makes it)");
+    }
+    return "file://" + path.string();
+  };
+  auto& properties = qos.properties().properties();
+  properties.emplace_back("dds.sec.auth.plugin", "builtin.PKI-DH");
+  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_ca", file("ca.pem"));
+  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_certificate", file(identity + ".pem"));
+  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.private_key", file(identity + ".key"));
+  properties.emplace_back("dds.sec.access.plugin", "builtin.Access-Permissions");
+  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.permissions_ca", file("ca.pem"));
+  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.governance", file("governance.p7s"));
+  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.permissions", file("permissions.p7s"));
+  properties.emplace_back("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+}
+
+}  // namespace
+
 DdsContext::DdsContext(const DdsOptions& options) {
   auto* factory = DomainParticipantFactory::get_instance();
   if (!options.xml_profile_file.empty() && !std::filesystem::is_regular_file(options.xml_profile_file)) {
@@ -284,11 +311,19 @@ DdsContext::DdsContext(const DdsOptions& options) {
     }
     transport_description_ = std::string(options.transport == Transport::udp ? "UDPv4" : "shared memory + UDPv4") +
                              " on " + (any ? std::string("every interface") : where);
+    if (!options.security_dir.empty()) {
+      add_security_properties(qos, options.security_dir, options.name);
+      transport_description_ += ", DDS Security as " + options.name;
+    }
     participant_ = factory->create_participant(options.domain_id, qos);
   }
   if (!participant_) {
-    throw std::runtime_error("dds: cannot create a participant in domain " +
-                             std::to_string(options.domain_id));
+    throw std::runtime_error("dds: cannot create a participant in domain " + std::to_string(options.domain_id) +
+                             (options.security_dir.empty()
+                                  ? std::string()
+                                  : " (with DDS Security from " + options.security_dir +
+                                        ": is the certificate of '" + options.name +
+                                        "' signed by its ca.pem, and are the governance and permissions signed by it?)"));
   }
   identity_ = prefix_text(participant_->guid().guidPrefix);
   publisher_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT);

@@ -48,6 +48,9 @@ struct DdsOptions {
   std::vector<std::string> discovery_servers;
   std::string xml_profile_file;     // optional Fast DDS XML profiles, loaded first
   std::string participant_profile;  // optional participant profile name in that file
+  // DDS Security (scripts/make-lab-pki.sh): the directory with ca.pem, governance.p7s,
+  // permissions.p7s and this participant's NAME.pem and NAME.key, NAME being `name`. Empty: off.
+  std::string security_dir;
   std::string name = "netmc";
 };
 

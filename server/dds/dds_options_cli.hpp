@@ -53,6 +53,9 @@ inline void add_dds_options(CLI::App& app, DdsOptions& options) {
                  "honoured too");
   app.add_option("--dds-participant-profile", options.participant_profile,
                  "Participant profile name in that file (replaces --interface and --transport)");
+  app.add_option("--security", options.security_dir,
+                 "DDS Security: directory made by scripts/make-lab-pki.sh (authenticated, access-controlled, "
+                 "encrypted); this participant's certificate is NAME.pem, NAME its node or --dds-name");
 }
 
 inline void add_time_base_option(CLI::App& app, TimeBase& base) {

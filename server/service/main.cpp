@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
   netmc::dds::DdsOptions dds;
   dds.name = "netmc-server";
   app.add_option("--listen", listen, "Management endpoint HOST:PORT (port 0: any free port)");
+  app.add_option("--dds-name", dds.name,
+                 "The server's DDS participant name, and its certificate's name under --security (default netmc-server)");
   app.add_option("--axis-timeout", axis_timeout_ms,
                  "Milliseconds an axis may take to answer before the job fails")
       ->check(CLI::Range(1, 600000));

@@ -16,11 +16,15 @@ int main(int argc, char** argv) {
   app.add_option("--domain", domain)->check(CLI::Range(0, 230));
   app.add_option("--seconds", seconds, "Listen at most this long");
   app.add_option("--expect", expect, "Stop after this many samples");
+  std::string security, name = "iteration-log-listener";
+  app.add_option("--security", security, "DDS Security directory (scripts/make-lab-pki.sh)");
+  app.add_option("--name", name, "Participant name (its certificate's, under --security)");
   CLI11_PARSE(app, argc, argv);
   netmc::dds::DdsOptions options;
   options.domain_id = domain;
   options.transport = netmc::dds::Transport::udp;
-  options.name = "iteration-log-listener";
+  options.name = name;
+  options.security_dir = security;
   netmc::dds::DdsContext context(options);
   netmc::dds::SampleReader<netmc::dds::IterationLog> reader(context.reader(
       context.topic<netmc::dds::IterationLogPubSubType>(netmc::dds::kIterationLogTopic), netmc::dds::Delivery::log));

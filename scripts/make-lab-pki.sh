@@ -1,0 +1,166 @@
+#!/usr/bin/env bash
+# A lab's DDS Security material for netmc: a certificate authority, one certificate per DDS
+# participant and the signed governance and permissions that say who may write what.
+#
+#   scripts/make-lab-pki.sh DIR --server NAME [--server NAME ...] --node NAME:AXIS[,AXIS...] [...]
+#                               [--reader NAME ...]
+#
+# Every participant gets DIR/NAME.pem (certificate) and DIR/NAME.key (its private key, 0600);
+# all share DIR/ca.pem, DIR/governance.p7s and DIR/permissions.p7s. Start each process with
+# `--security DIR` and its name (netmc-server --dds-name NAME, netmc-axis --node NAME).
+# Permissions (everything else is denied):
+#   server  writes job control, setpoints, clock probes and iteration logs; reads feedback,
+#           axis events, node status and clock replies;
+#   node    writes feedback and axis events only in the partitions of its own axes, its status
+#           and clock replies; reads job control, setpoints, clock probes and node status;
+#   reader  reads iteration logs and node status (a monitor), writes nothing.
+# Governance: no unauthenticated participant joins; discovery, liveliness and every topic's
+# data are encrypted (AES-GCM) and access-controlled. Topics are named one by one (a * in a
+# topic name does not cross a /).
+# Needs openssl. Keys are ECDSA P-256; certificates and permissions hold for 10 years.
+set -euo pipefail
+
+usage() {
+  echo "usage: $0 DIR --server NAME [...] --node NAME:AXIS[,AXIS...] [...] [--reader NAME ...]" >&2
+  exit 2
+}
+[ $# -ge 1 ] || usage
+dir=$1
+shift
+servers=()
+nodes=()
+readers=()
+while [ $# -gt 0 ]; do
+  [ $# -ge 2 ] || usage
+  case "$1" in
+    --server) servers+=("$2") ;;
+    --node) nodes+=("$2") ;;
+    --reader) readers+=("$2") ;;
+    *) usage ;;
+  esac
+  shift 2
+done
+[ ${#servers[@]} -gt 0 ] || usage
+name_ok() { [[ "$1" =~ ^[A-Za-z0-9_.-]{1,64}$ ]] || { echo "$0: bad name '$1' (1-64 of A-Z a-z 0-9 _ . -)" >&2; exit 2; }; }
+
+mkdir -p "$dir"
+umask 077
+cd "$dir"
+
+openssl ecparam -name prime256v1 -genkey -noout -out ca.key
+openssl req -x509 -new -key ca.key -sha256 -days 3650 -subj "/CN=netmc lab CA" -out ca.pem 2>/dev/null
+
+issue() {  # issue NAME: NAME.key and NAME.pem signed by the CA
+  name_ok "$1"
+  openssl ecparam -name prime256v1 -genkey -noout -out "$1.key"
+  openssl req -new -key "$1.key" -sha256 -subj "/CN=$1" -out "$1.csr" 2>/dev/null
+  openssl x509 -req -in "$1.csr" -CA ca.pem -CAkey ca.key -CAcreateserial -sha256 -days 3650 -out "$1.pem" 2>/dev/null
+  rm -f "$1.csr"
+}
+
+topics() {  # topics T...: <topic> elements
+  for t in "$@"; do printf '            <topic>%s</topic>\n' "$t"; done
+}
+
+# rule PUBLISH_TOPICS SUBSCRIBE_TOPICS [PUBLISH_PARTITIONS [SUBSCRIBE_PARTITIONS]]: one
+# <allow_rule> (lists space-separated). Without partitions a rule covers only the default
+# (empty) partition; "*" covers every partition.
+rule() {
+  echo "      <allow_rule>"
+  echo "        <domains><id_range><min>0</min><max>230</max></id_range></domains>"
+  local kind list partitions
+  for kind in publish subscribe; do
+    if [ "$kind" = publish ]; then list=$1; partitions=${3:-}; else list=$2; partitions=${4:-}; fi
+    [ -n "$list" ] || continue
+    echo "        <$kind>"
+    echo "          <topics>"
+    # shellcheck disable=SC2086
+    topics $list
+    echo "          </topics>"
+    if [ -n "$partitions" ]; then
+      echo "          <partitions>"
+      for p in $partitions; do printf '            <partition>%s</partition>\n' "$p"; done
+      echo "          </partitions>"
+    fi
+    echo "        </$kind>"
+  done
+  echo "      </allow_rule>"
+}
+
+# grant NAME RULES: the <grant> of NAME's certificate, everything not allowed denied
+grant() {
+  cat <<XML
+    <grant name="$1">
+      <subject_name>CN=$1</subject_name>
+      <validity><not_before>2020-01-01T00:00:00</not_before><not_after>2036-01-01T00:00:00</not_after></validity>
+$2
+      <default>DENY</default>
+    </grant>
+XML
+}
+
+{
+  echo '<?xml version="1.0" encoding="UTF-8"?>'
+  echo '<dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="omg_shared_ca_permissions.xsd">'
+  echo '  <permissions>'
+  for s in "${servers[@]}"; do
+    issue "$s"
+    # The per-axis topics live in the axes' partitions, the others in the default one.
+    grant "$s" "$(rule "netmc/v2/lockstep/setpoint netmc/v2/realtime/setpoint" \
+      "netmc/v2/lockstep/feedback netmc/v2/realtime/feedback netmc/v2/axis_event" "netmc.axis.*" "netmc.axis.*")
+$(rule "netmc/v2/job_control netmc/v2/clock_probe netmc/v2/iteration_log" \
+      "netmc/v2/node_status netmc/v2/clock_reply")"
+  done
+  for spec in "${nodes[@]}"; do
+    node=${spec%%:*}
+    axes=${spec#*:}
+    [ "$node" != "$spec" ] && [ -n "$axes" ] || usage
+    issue "$node"
+    partitions=""
+    for axis in ${axes//,/ }; do name_ok "$axis"; partitions+=" netmc.axis.$axis"; done
+    # Feedback and events only in its axes' partitions, their setpoints; its status and clock
+    # replies, job control and probes in the default partition.
+    grant "$node" "$(rule "netmc/v2/lockstep/feedback netmc/v2/realtime/feedback netmc/v2/axis_event" \
+      "netmc/v2/lockstep/setpoint netmc/v2/realtime/setpoint" "$partitions" "$partitions")
+$(rule "netmc/v2/node_status netmc/v2/clock_reply" "netmc/v2/job_control netmc/v2/clock_probe netmc/v2/node_status")"
+  done
+  for r in "${readers[@]}"; do
+    issue "$r"
+    grant "$r" "$(rule "" "netmc/v2/iteration_log netmc/v2/node_status")"
+  done
+  echo '  </permissions>'
+  echo '</dds>'
+} >permissions.xml
+
+cat >governance.xml <<'XML'
+<?xml version="1.0" encoding="UTF-8"?>
+<dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="omg_shared_ca_governance.xsd">
+  <domain_access_rules>
+    <domain_rule>
+      <domains><id_range><min>0</min><max>230</max></id_range></domains>
+      <allow_unauthenticated_participants>false</allow_unauthenticated_participants>
+      <enable_join_access_control>true</enable_join_access_control>
+      <discovery_protection_kind>ENCRYPT</discovery_protection_kind>
+      <liveliness_protection_kind>ENCRYPT</liveliness_protection_kind>
+      <rtps_protection_kind>NONE</rtps_protection_kind>
+      <topic_access_rules>
+        <topic_rule>
+          <topic_expression>*</topic_expression>
+          <enable_discovery_protection>true</enable_discovery_protection>
+          <enable_liveliness_protection>false</enable_liveliness_protection>
+          <enable_read_access_control>true</enable_read_access_control>
+          <enable_write_access_control>true</enable_write_access_control>
+          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>
+          <data_protection_kind>ENCRYPT</data_protection_kind>
+        </topic_rule>
+      </topic_access_rules>
+    </domain_rule>
+  </domain_access_rules>
+</dds>
+XML
+
+for doc in governance permissions; do
+  openssl smime -sign -in "$doc.xml" -text -out "$doc.p7s" -signer ca.pem -inkey ca.key
+done
+chmod 644 ca.pem ./*.pem governance.* permissions.*
+echo "$dir: CA, ${#servers[@]} server(s), ${#nodes[@]} node(s), ${#readers[@]} reader(s); governance.p7s, permissions.p7s"
