@@ -93,9 +93,9 @@ void LockstepAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   if (!axis.endpoint || axis.job_id != setpoint.job_id() || !link_.from_holder(setpoint.axis(), setpoint.server(), setpoint.job_id())) {
     return;
   }
-  // Nothing but a setpoint of this job's cycles is looked at; a non-finite command trips the axis.
+  // Nothing but a setpoint of this job's cycles is looked at; the actuator trips on a command it
+  // must not take (non-finite, beyond its limit) when it applies it.
   if (!std::isfinite(setpoint.send_time_s()) || setpoint.cycle() >= axis.cycles) return;
-  if (!std::isfinite(setpoint.command())) axis.endpoint->trip("command not finite (cycle " + std::to_string(setpoint.cycle()) + ")");
   Feedback feedback;
   feedback.axis(setpoint.axis());
   feedback.server(setpoint.server());

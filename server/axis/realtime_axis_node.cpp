@@ -162,13 +162,9 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
     ++axis.commands_received;
     return;
   }
-  // Nothing but a setpoint of this job's cycles is looked at; a non-finite command trips the axis.
+  // Nothing but a setpoint of this job's cycles is looked at; the actuator trips on a command it
+  // must not take (non-finite, beyond its limit) when it applies it (reported with the sample).
   if (!std::isfinite(setpoint.send_time_s()) || setpoint.cycle() >= axis.cycles) return;
-  if (!std::isfinite(setpoint.command())) {
-    axis.endpoint->trip("command not finite (cycle " + std::to_string(setpoint.cycle()) + ")");
-    link_.report_fault(setpoint.axis(), axis, axis.server, axis.iteration);
-    return;
-  }
   const auto arrived = Clock::now();
   const auto cycle = static_cast<std::int64_t>(setpoint.cycle());
   if (cycle > axis.newest_timed && axis.feedback_sent[setpoint.cycle()] != Clock::time_point{}) {

@@ -44,7 +44,6 @@ class AxisEndpoint {
   void hold() { axis_.hold(); }
   // The operator's limits tripped (SimulatedAxis::fault); a node reports it and stops.
   const std::optional<std::string>& fault() const { return axis_.fault(); }
-  void trip(const std::string& reason) { axis_.trip(reason); }
 
   std::uint64_t lost_setpoints() const { return lost_; }
   std::uint64_t stale_setpoints() const { return axis_.stale_setpoints(); }

@@ -50,7 +50,11 @@ void SimulatedAxis::advance_to(double end_time_s, const std::vector<Delivery>& d
     if (!freshness_.accept(delivery.sequence) || fault_) continue;
     // Limits are enforced here, at the axis, whatever the server sent: the operator's trip,
     // then the drive's saturation and slew rate.
-    if (!std::isfinite(delivery.payload) || !(std::abs(delivery.payload) <= limits_.command)) {
+    if (!std::isfinite(delivery.payload)) {
+      trip(fmt::format("command {:g} (cycle {}) not finite", delivery.payload, delivery.sequence));
+      continue;
+    }
+    if (!(std::abs(delivery.payload) <= limits_.command)) {
       trip(fmt::format("command {:g} (cycle {}) beyond the axis's limit {:g}", delivery.payload, delivery.sequence,
                        limits_.command));
       continue;

@@ -39,8 +39,6 @@ class SimulatedAxis {
   // Why the axis tripped (the first reason), nullopt while it is healthy. A faulted axis
   // applies no command: its input stays zero.
   const std::optional<std::string>& fault() const { return fault_; }
-  // A command refused before it reaches the plant: trips the axis (non-finite, beyond the limit).
-  void trip(const std::string& reason);
   void clear_fault() { fault_.reset(); }
   std::uint64_t stale_setpoints() const { return freshness_.stale_dropped(); }
 
@@ -55,7 +53,8 @@ class SimulatedAxis {
   double input_changed_s_ = 0.0;  // when the applied input last changed (slew limit)
   std::optional<std::string> fault_;
 
-  void check_state();  // trips on a position or velocity beyond the limits
+  void trip(const std::string& reason);  // latches the first reason, commands zero
+  void check_state();                    // trips on a position or velocity beyond the limits
 };
 
 }  // namespace netmc::sim

@@ -295,16 +295,21 @@ std::vector<netmc::v1::Response> raw_exchange(std::uint16_t port, const std::str
   return responses;
 }
 
-TEST(ManagementEndpoint, MalformedFrameGetsAnErrorAndTheConnectionCloses) {
-  IoThread runner;  // first: everything holding a Session goes before the io_context
-  std::atomic<int> requests{0};
-  ManagementServer server(runner.io, "127.0.0.1", 0, {[&](Session& session, const netmc::v1::Request& request) {
+// A handler that counts the requests and accepts each as job 1.
+ManagementServer::Handler accept_counting(std::atomic<int>& requests) {
+  return {[&requests](Session& session, const netmc::v1::Request& request) {
     ++requests;
     netmc::v1::Response accepted;
     accepted.set_request_id(request.request_id());
     accepted.mutable_accepted()->set_job_id(1);
     session.send(accepted);
-  }});
+  }};
+}
+
+TEST(ManagementEndpoint, MalformedFrameGetsAnErrorAndTheConnectionCloses) {
+  IoThread runner;  // first: everything holding a Session goes before the io_context
+  std::atomic<int> requests{0};
+  ManagementServer server(runner.io, "127.0.0.1", 0, accept_counting(requests));
   runner.start();
   // A good request, then garbage in the same write: the good one is answered first.
   const char garbage[] = {0x00, 0x00, 0x00, 0x03, '\xff', '\xff', '\xff'};
@@ -366,13 +371,7 @@ TEST(ManagementEndpoint, OneConnectionOverTheCapIsRefusedWithAMessage) {
   ManagementLimits limits;
   limits.max_connections = 2;
   std::atomic<int> requests{0};
-  ManagementServer server(runner.io, "127.0.0.1", 0, {[&](Session& session, const netmc::v1::Request& request) {
-    ++requests;
-    netmc::v1::Response accepted;
-    accepted.set_request_id(request.request_id());
-    accepted.mutable_accepted()->set_job_id(1);
-    session.send(accepted);
-  }}, limits);
+  ManagementServer server(runner.io, "127.0.0.1", 0, accept_counting(requests), limits);
   runner.start();
   const std::string endpoint = "127.0.0.1:" + std::to_string(server.port());
   ManagementClient first(endpoint, 2s), second(endpoint, 2s);
