@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <iostream>
-#include <set>
 
 #include "dds_typesPubSubTypes.h"
 #include "idl/job.pb.h"
@@ -80,7 +79,8 @@ void AxisNodeLink::claim(std::chrono::milliseconds listen) {
   // The whole window, even after a conflict: by its end the servers have matched this node's
   // status writer, so they hear the refusal too.
   while (auto status = others.take_until(deadline)) {
-    if (!conflict.empty() || status->participant() == context_.identity() ||
+    if (!conflict.empty() || !dds::sent_by(others.last_sender(), status->participant()) ||
+        status->participant() == context_.identity() ||
         status->health() == netmc::dds::NODE_REFUSED || status->health() == netmc::dds::NODE_LEAVING) {
       continue;
     }
@@ -96,6 +96,36 @@ void AxisNodeLink::claim(std::chrono::milliseconds listen) {
   refused_ = true;
   status_writer_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(1, 0));
   throw NodeRefused(conflict);
+}
+
+bool AxisNodeLink::authentic(const eprosima::fastrtps::rtps::GuidPrefix_t& sender, const std::string& server,
+                             const char* what, const std::string& axis) {
+  if (dds::sent_by(sender, server)) return true;
+  ++forged_;
+  constexpr std::size_t kMaxForgersLogged = 16;  // forger and kind: a flood of fresh forgers cannot fill the log
+  const std::string forger = dds::prefix_text(sender);
+  std::lock_guard lock(mutex_);
+  if (forgers_logged_.size() < kMaxForgersLogged && forgers_logged_.insert(forger + " " + what).second) {
+    std::cerr << "netmc-axis " << config_.node << ": dropped a forged " << what << " for axis " << axis.substr(0, 64)
+              << ": it names server " << server.substr(0, 32) << " but participant " << forger
+              << " sent it (its further forgeries of the kind are counted, not logged)" << std::endl;
+  }
+  return false;
+}
+
+std::optional<netmc::dds::JobControl> AxisNodeLink::take_control() {
+  while (auto control = control_.try_take()) {
+    if (!hosts(control->axis())) continue;  // another node's: not looked at
+    if (authentic(control_.last_sender(), control->server(), "job control", control->axis())) return control;
+  }
+  return std::nullopt;
+}
+
+std::optional<netmc::dds::Setpoint> AxisNodeLink::take_setpoint() {
+  while (auto setpoint = setpoints_.try_take()) {
+    if (authentic(setpoints_.last_sender(), setpoint->server(), "setpoint", setpoint->axis())) return setpoint;
+  }
+  return std::nullopt;
 }
 
 bool AxisNodeLink::hosts(const std::string& axis) const {
@@ -133,7 +163,9 @@ void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::stri
     std::string faults;
     for (const auto& [axis, reason] : faults_) faults += (faults.empty() ? "" : "; ") + axis + ": " + reason;
     status.health(faults.empty() ? health : netmc::dds::NODE_FAULT);
-    status.detail((faults.empty() ? detail : faults + "; reset on the axis's host (SIGUSR1)").substr(0, 255));
+    std::string said = faults.empty() ? detail : faults + "; reset on the axis's host (SIGUSR1)";
+    if (const auto forged = forged_.load(); forged > 0) said += "; " + std::to_string(forged) + " forged samples dropped";
+    status.detail(said.substr(0, 255));
   }
   status.participant(context_.identity());
   {
@@ -283,7 +315,10 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
 void AxisNodeLink::answer_probes() {
   while (!stop_.load()) {
     auto received = probes_.take_until_received(std::chrono::steady_clock::now() + std::chrono::milliseconds(100));
-    if (!received || received->first.node() != config_.node) continue;
+    if (!received || received->first.node() != config_.node ||
+        !authentic(probes_.last_sender(), received->first.server(), "clock probe", "-")) {
+      continue;
+    }
     const auto* probe = &received->first;
     netmc::dds::ClockReply reply;
     reply.t2_s(dds::time_base_at_s(config_.time_base, received->second));

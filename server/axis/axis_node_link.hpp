@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -66,6 +67,13 @@ class AxisNodeLink {
   bool hosts(const std::string& axis) const;
   dds::SampleReader<netmc::dds::JobControl>& control() { return control_; }
   dds::SampleReader<netmc::dds::Setpoint>& setpoints() { return setpoints_; }
+  // The next job control or setpoint that was sent by the participant its `server` field names.
+  // Others are forgeries (a participant speaking as a server it is not): dropped, counted, and
+  // each forging participant logged once, so that no foreign sample holds, moves or makes stale
+  // an axis of a server's job.
+  std::optional<netmc::dds::JobControl> take_control();
+  std::optional<netmc::dds::Setpoint> take_setpoint();
+  std::uint64_t forged_samples() const { return forged_.load(); }
   void publish(netmc::dds::Feedback& feedback);
   void publish_event(netmc::dds::AxisEvent& event);
   void publish_status(netmc::dds::NodeHealth health, const std::string& detail);
@@ -98,6 +106,9 @@ class AxisNodeLink {
 
  private:
   void answer_probes();
+  // True if `server` is the sender's identity; else counts and logs the forgery.
+  bool authentic(const eprosima::fastrtps::rtps::GuidPrefix_t& sender, const std::string& server, const char* what,
+                 const std::string& axis);
 
   struct Hold {
     std::string server;
@@ -126,6 +137,8 @@ class AxisNodeLink {
   std::map<std::string, Hold> holds_;  // by axis
   std::map<std::string, std::string> faults_;  // by axis: the reason
 
+  std::atomic<std::uint64_t> forged_{0};
+  std::set<std::string> forgers_logged_;  // "participant kind", bounded: kMaxForgersLogged
   bool refused_ = false;
   std::atomic<bool> stop_{false};
   std::thread probe_thread_;

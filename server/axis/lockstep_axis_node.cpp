@@ -20,8 +20,8 @@ void LockstepAxisNode::serve(const std::atomic<bool>& stop) {
   auto last_status = std::chrono::steady_clock::now();
   while (!stop.load()) {
     link_.poll_fault_reset();
-    while (auto control = link_.control().try_take()) handle(*control);
-    while (auto setpoint = link_.setpoints().try_take()) handle(*setpoint);
+    while (auto control = link_.take_control()) handle(*control);
+    while (auto setpoint = link_.take_setpoint()) handle(*setpoint);
     if (std::chrono::steady_clock::now() - last_status >= kStatusPeriod) {
       publish_status();
       last_status = std::chrono::steady_clock::now();

@@ -44,8 +44,8 @@ void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
       if (sampling(axis) && axis.next_sample <= now) sample(name, axis, now);
       if (axis.ending && axis.report_at <= now) end_iteration(name, axis);
     }
-    while (auto setpoint = link_.setpoints().try_take()) handle(*setpoint);
-    while (auto control = link_.control().try_take()) handle(*control);
+    while (auto setpoint = link_.take_setpoint()) handle(*setpoint);
+    while (auto control = link_.take_control()) handle(*control);
     if (now >= next_status) {
       publish_status();
       next_status = now + kStatusPeriod;

@@ -173,6 +173,17 @@ std::string prefix_text(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix) {
   return out;
 }
 
+bool sent_by(const eprosima::fastrtps::rtps::GuidPrefix_t& sender, const std::string& identity) {
+  constexpr char kDigits[] = "0123456789abcdef";
+  if (identity.size() != 2 * sender.size) return false;
+  for (std::size_t i = 0; i < sender.size; ++i) {
+    if (identity[2 * i] != kDigits[sender.value[i] >> 4] || identity[2 * i + 1] != kDigits[sender.value[i] & 0xf]) {
+      return false;
+    }
+  }
+  return true;
+}
+
 // Keeps the participants of the endpoints a writer or reader is matched with (2.9 has no
 // get_matched_subscriptions).
 class DdsContext::MatchTracker : public DataWriterListener, public DataReaderListener {

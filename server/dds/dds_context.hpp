@@ -20,6 +20,7 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
+#include <fastdds/rtps/common/GuidPrefix_t.hpp>
 
 #include <chrono>
 #include <map>
@@ -195,6 +196,10 @@ class SampleReader {
   // For a WaitSet that waits on several readers at once.
   eprosima::fastdds::dds::StatusCondition& condition() { return readers_.front()->get_statuscondition(); }
 
+  // The participant whose writer sent the sample taken last: what a sample says of its own
+  // origin (a `server` or `participant` field) is believed only if this agrees (sent_by).
+  const eprosima::fastrtps::rtps::GuidPrefix_t& last_sender() const { return last_sender_; }
+
  private:
   // Round robin over the readers, so that no axis's samples wait behind another's.
   std::optional<std::pair<Sample, std::chrono::system_clock::time_point>> try_take_received() {
@@ -204,7 +209,10 @@ class SampleReader {
       auto* reader = readers_[next_];
       next_ = (next_ + 1) % readers_.size();
       while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-        if (info.valid_data) return std::make_pair(std::move(sample), received_at(info));
+        if (info.valid_data) {
+          last_sender_ = info.sample_identity.writer_guid().guidPrefix;
+          return std::make_pair(std::move(sample), received_at(info));
+        }
       }
     }
     return std::nullopt;
@@ -212,6 +220,7 @@ class SampleReader {
 
   std::vector<eprosima::fastdds::dds::DataReader*> readers_;
   std::size_t next_ = 0;
+  eprosima::fastrtps::rtps::GuidPrefix_t last_sender_;
   eprosima::fastdds::dds::WaitSet waitset_;
 };
 
@@ -221,5 +230,11 @@ bool wait_for_readers(eprosima::fastdds::dds::DataWriter* writer, int count,
 
 // A GUID prefix as 24 hex digits.
 std::string prefix_text(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix);
+
+// True if `identity` (24 hex digits, as prefix_text writes them) names `sender`. Without
+// allocating: it runs for every setpoint and feedback sample. Without DDS Security this stops
+// a participant that claims another's identity in a sample's fields; one that forges its RTPS
+// GUID itself is stopped only by authentication (--security).
+bool sent_by(const eprosima::fastrtps::rtps::GuidPrefix_t& sender, const std::string& identity);
 
 }  // namespace netmc::dds

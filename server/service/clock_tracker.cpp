@@ -74,7 +74,8 @@ void ClockTracker::run() {
     if (reply.server() != server_) continue;  // another server's probe
     std::lock_guard lock(mutex_);
     const auto it = tracked_.find(reply.node());
-    if (it == tracked_.end()) continue;
+    // Only the node's own reply measures its clock: a forged one would shift a realtime job's start.
+    if (it == tracked_.end() || !dds::sent_by(replies_.last_sender(), it->second.participant)) continue;
     it->second.estimator.add({reply.t1_s(), reply.t2_s(), reply.t3_s(), t4});
   }
 }

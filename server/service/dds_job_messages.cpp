@@ -70,13 +70,21 @@ std::size_t axis_index(const JobChannels& channels, const std::string& axis) {
                                   channels.axes.begin());
 }
 
+bool from_axis_node(const JobChannels& channels, std::size_t axis,
+                    const eprosima::fastrtps::rtps::GuidPrefix_t& sender) {
+  if (axis < channels.nodes.size() && dds::sent_by(sender, channels.nodes[axis])) return true;
+  ++channels.forged_samples;
+  return false;
+}
+
 namespace {
 
 // True if `event` is an iteration end of this job (handed to `on_ended`); throws on a refusal or fault.
 bool handle_axis_event(const JobChannels& channels, std::uint64_t job_id, const netmc::dds::AxisEvent& event,
                        const std::function<void(const netmc::dds::AxisEvent&)>& on_ended) {
   if (event.server() != channels.server || event.job_id() != job_id ||
-      axis_index(channels, event.axis()) >= channels.axes.size()) {
+      axis_index(channels, event.axis()) >= channels.axes.size() ||
+      !from_axis_node(channels, axis_index(channels, event.axis()), channels.events->last_sender())) {
     return false;
   }
   switch (event.kind()) {

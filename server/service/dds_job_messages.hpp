@@ -30,7 +30,18 @@ struct JobChannels {
   dds::SampleReader<netmc::dds::Feedback>* feedback = nullptr;
   dds::SampleReader<netmc::dds::AxisEvent>* events = nullptr;
   eprosima::fastdds::dds::DataWriter* iteration_logs = nullptr;
+  // The participant (GUID prefix) of the node hosting each axis, in the job's order: feedback
+  // and events about an axis are believed only from it.
+  std::vector<std::string> nodes;
+  // Samples about the job's axes that came from another participant: dropped, counted here.
+  mutable std::uint64_t forged_samples = 0;
 };
+
+// True if the node hosting the job's axis `axis` sent the sample `sender` sent; else counts a
+// forgery (a participant speaking for an axis it does not host, e.g. to steer the controller
+// with fake feedback or end the job with a fake fault).
+bool from_axis_node(const JobChannels& channels, std::size_t axis,
+                    const eprosima::fastrtps::rtps::GuidPrefix_t& sender);
 
 class JobPublisher {
  public:

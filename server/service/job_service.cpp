@@ -390,6 +390,17 @@ void JobService::run(Job& job) {
     channels.iteration_logs = iteration_logs_;
     for (const auto& axis : channels.axes) channels.setpoints.push_back(setpoint_writer(realtime, axis));
     const std::vector<NodeRecord> nodes = find_nodes(job, channels);
+    for (const auto& node : nodes) channels.nodes.push_back(node.status.participant());
+    struct ReportForgeries {
+      const JobChannels& channels;
+      std::uint64_t job_id;
+      ~ReportForgeries() {
+        if (channels.forged_samples == 0) return;
+        std::cerr << "netmc-server: job " << job_id << ": dropped " << channels.forged_samples
+                  << " forged feedback or axis events (about its axes, from participants that do not host them)"
+                  << std::endl;
+      }
+    } report_forgeries{channels, job.id};
     const auto on_iteration = [&](const sim::IterationRecord& record) {
       const auto metrics = job::to_proto(record.metrics);
       *done.mutable_result()->add_iterations() = metrics;

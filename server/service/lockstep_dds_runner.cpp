@@ -37,7 +37,8 @@ std::vector<netmc::dds::Feedback> LockstepDdsRunner::collect(std::uint32_t itera
     // Samples of other servers, earlier jobs or cycles may still arrive; only this exchange counts.
     const std::size_t axis = axis_index(channels_, sample->axis());
     if (sample->server() != channels_.server || sample->job_id() != publisher_.job_id() ||
-        sample->iteration() != iteration || sample->cycle() != cycle || axis >= axes || have[axis]) {
+        sample->iteration() != iteration || sample->cycle() != cycle || axis >= axes ||
+        !from_axis_node(channels_, axis, channels_.feedback->last_sender()) || have[axis]) {
       continue;
     }
     have[axis] = true;

@@ -23,11 +23,19 @@ void NodeDirectory::run() {
     auto status = reader_.take(std::chrono::milliseconds(100));
     const auto now = std::chrono::steady_clock::now();
     std::lock_guard lock(mutex_);
+    // A status is believed only from the participant it names: another participant's word
+    // (a spoof of a node's status, its holds or its leaving) is dropped.
+    if (status && !dds::sent_by(reader_.last_sender(), status->participant())) {
+      log_spoof(status->node(), "names participant " + status->participant().substr(0, 32) + " but " +
+                                    dds::prefix_text(reader_.last_sender()) + " sent it");
+      status.reset();
+    }
     if (status) {
       const std::string name = status->node();
       const auto it = nodes_.find(name);
       // A refused node and a leaving one go; a rival with the same name does not remove the holder.
       const bool same = it != nodes_.end() && it->second.status.participant() == status->participant();
+      const bool name_taken = it != nodes_.end() && !same && now - it->second.last_seen <= expiry_;
       if (status->health() == netmc::dds::NODE_REFUSED) {
         std::cerr << "netmc-server: node " << name << " (" << status->participant() << ") "
                   << status->detail() << std::endl;
@@ -37,6 +45,11 @@ void NodeDirectory::run() {
       } else if (same) {
         it->second.status = *status;
         it->second.last_seen = now;
+      } else if (name_taken) {
+        // The live node keeps its name (a node restarted under it is back once the old one is
+        // forgotten, as the node itself waits for): an impostor cannot take over its axes.
+        log_spoof(name, "participant " + status->participant().substr(0, 32) + " claims the name of live participant " +
+                            it->second.status.participant());
       } else {
         nodes_[name] = NodeRecord{*status, now, now, ""};  // new, or restarted (a new participant)
       }
@@ -44,6 +57,13 @@ void NodeDirectory::run() {
     expire(now);
     judge();
   }
+}
+
+void NodeDirectory::log_spoof(const std::string& node, const std::string& what) {
+  constexpr std::size_t kMaxSpoofsLogged = 16;  // a flood of them cannot fill the log
+  const std::string line = "ignored a status of node " + node.substr(0, 64) + ": " + what;
+  if (spoofs_logged_.size() >= kMaxSpoofsLogged || !spoofs_logged_.insert(line).second) return;
+  std::cerr << "netmc-server: " << line << std::endl;
 }
 
 void NodeDirectory::expire(std::chrono::steady_clock::time_point now) {

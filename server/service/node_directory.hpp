@@ -10,6 +10,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -44,11 +45,13 @@ class NodeDirectory {
   void run();
   void expire(std::chrono::steady_clock::time_point now);
   void judge();
+  void log_spoof(const std::string& node, const std::string& what);
 
   dds::SampleReader<netmc::dds::NodeStatus> reader_;
   std::chrono::milliseconds expiry_;
   mutable std::mutex mutex_;
   std::map<std::string, NodeRecord> nodes_;
+  std::set<std::string> spoofs_logged_;  // what log_spoof said (each once; the first few)
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };

@@ -58,6 +58,7 @@ void RealtimeDdsRunner::gather(std::uint32_t iteration, std::uint64_t cycle, Clo
     const std::size_t axis = axis_index(channels_, sample->axis());
     if (sample->server() != channels_.server || sample->job_id() != publisher_.job_id() ||
         sample->iteration() != iteration || axis >= axes || sample->kind() != netmc::dds::FEEDBACK_SAMPLE ||
+        !from_axis_node(channels_, axis, channels_.feedback->last_sender()) ||
         sample->cycle() >= received_[axis].size() || received_[axis][sample->cycle()]) {
       continue;
     }

@@ -1,4 +1,5 @@
-// The edge of the DDS layer that needs no peer: interface choice and the clocks of --time-base.
+// The edge of the DDS layer that needs no peer: interface choice, the clocks of --time-base, and
+// the check of a sample's claimed origin.
 #include <gtest/gtest.h>
 
 #include <time.h>
@@ -27,6 +28,24 @@ TEST(Interfaces, UnknownNamesAndMalformedAddressesNameTheFlag) {
     } catch (const std::invalid_argument& error) {
       EXPECT_EQ(std::string(error.what()).rfind("--interface: ", 0), 0u) << error.what();
     }
+  }
+}
+
+TEST(SentBy, TheClaimedIdentityMustBeTheSendersPrefixDigitForDigit) {
+  eprosima::fastrtps::rtps::GuidPrefix_t sender;
+  for (std::size_t i = 0; i < sender.size; ++i) sender.value[i] = static_cast<eprosima::fastrtps::rtps::octet>(0x0f + 17 * i);
+  const std::string identity = prefix_text(sender);  // the second method: snprintf("%02x")
+  ASSERT_EQ(identity, "0f2031425364758697a8b9ca");
+  EXPECT_TRUE(sent_by(sender, identity));
+  // Any one digit off, upper case, too short, too long, empty: another participant.
+  for (std::size_t i = 0; i < identity.size(); ++i) {
+    std::string other = identity;
+    other[i] = other[i] == '0' ? '1' : '0';
+    EXPECT_FALSE(sent_by(sender, other)) << other;
+  }
+  for (const std::string& other : {std::string("0F2031425364758697A8B9CA"), identity.substr(1), identity + "0",
+                                  std::string()}) {
+    EXPECT_FALSE(sent_by(sender, other)) << other;
   }
 }
 

@@ -1,0 +1,319 @@
+// Test tool: a rogue participant on a netmc DDS domain, for integration.rogue_participant. It
+// links the generated types and speaks the data plane as netmc-server and netmc-axis do, but as
+// nobody it should be believed as:
+//   drive   acts as a server of its own on an idle axis: BEGIN_ITERATION with its own job spec,
+//           then commands of --command (1e30, or NaN with --nan); prints what the axis reported.
+//   hijack  waits for a real server's job on --axis and, while it runs, speaks in that server's
+//           and that axis node's name: setpoints with sequence number 2^64-2 and NaN commands
+//           for the next cycle, fake feedback, a fake fault, a fake END_JOB, and node statuses
+//           that spoof the node (its participant, its name, its axes). Prints what it sent.
+// Without DDS Security every participant on the domain can do this; what netmc promises is
+// that none of it moves an axis of the real server's job or changes its result.
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <limits>
+#include <optional>
+#include <thread>
+
+#include "dds_typesPubSubTypes.h"
+#include "idl/job.pb.h"
+#include "server/dds/dds_context.hpp"
+#include "server/dds/time_base.hpp"
+#include "server/dds/topics.hpp"
+#include "server/job/job_builder.hpp"
+
+namespace {
+
+namespace nd = netmc::dds;
+using Clock = std::chrono::steady_clock;
+
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop.store(true); }
+
+struct Options {
+  nd::DdsOptions dds;
+  std::string axis;
+  std::string clock = "lockstep";
+  double command = 1e30;
+  bool nan = false;
+  double seconds = 30.0;
+};
+
+// The status of the node hosting `axis` (its participant, plant, clock), once it is discovered.
+std::optional<nd::NodeStatus> find_node(nd::SampleReader<nd::NodeStatus>& statuses, const std::string& axis,
+                                        Clock::time_point until) {
+  while (auto status = statuses.take_until(until)) {
+    for (const auto& a : status->axes()) {
+      if (a == axis && status->health() != nd::NODE_REFUSED && status->health() != nd::NODE_LEAVING) return status;
+    }
+  }
+  return std::nullopt;
+}
+
+int drive(const Options& options) {
+  nd::DdsContext context(options.dds);
+  const bool realtime = options.clock == "realtime";
+  const std::string partition = nd::partition_of_axis(options.axis);
+  nd::SampleReader<nd::NodeStatus> statuses(
+      context.reader(context.topic<nd::NodeStatusPubSubType>(nd::kNodeStatusTopic), nd::Delivery::status));
+  nd::SampleReader<nd::Feedback> feedback(context.reader(
+      context.topic<nd::FeedbackPubSubType>(realtime ? nd::kRealtimeFeedbackTopic : nd::kLockstepFeedbackTopic),
+      realtime ? nd::Delivery::stream : nd::Delivery::exchange, {partition}));
+  nd::SampleReader<nd::AxisEvent> events(context.reader(
+      context.topic<nd::AxisEventPubSubType>(nd::kAxisEventTopic), nd::Delivery::control, {partition}));
+  auto* control = context.writer(context.topic<nd::JobControlPubSubType>(nd::kJobControlTopic), nd::Delivery::control);
+  auto* setpoints = context.writer(
+      context.topic<nd::SetpointPubSubType>(realtime ? nd::kRealtimeSetpointTopic : nd::kLockstepSetpointTopic),
+      realtime ? nd::Delivery::stream : nd::Delivery::exchange, partition);
+
+  const auto node = find_node(statuses, options.axis, Clock::now() + std::chrono::seconds(10));
+  if (!node) {
+    fmt::print("rogue: no node hosts axis {}\n", options.axis);
+    return 1;
+  }
+  if (!context.wait_for_participants(control, {node->participant()}, std::chrono::seconds(10)) ||
+      !context.wait_for_participants(setpoints, {node->participant()}, std::chrono::seconds(10))) {
+    fmt::print("rogue: node {} does not read our job control and setpoints\n", node->node());
+    return 1;
+  }
+  netmc::v1::JobSpec spec;
+  spec.set_plant(node->plant());
+  spec.set_clock(options.clock);
+  spec.add_axes(options.axis);
+  spec.add_axes(options.axis + "-other");
+  auto& circle = *spec.mutable_trajectory()->mutable_circle();
+  circle.set_radius_m(0.01);
+  circle.set_period_s(8.0);
+  netmc::job::apply_defaults(spec);
+  const std::string bytes = spec.SerializeAsString();
+  const std::uint64_t job_id = 4242;
+  const double start_s = realtime ? nd::time_base_now_s(nd::parse_time_base(node->time_base())) + 0.3 : 0.0;
+  nd::JobControl begin;
+  begin.axis(options.axis);
+  begin.server(context.identity());
+  begin.job_id(job_id);
+  begin.iteration(1);
+  begin.kind(nd::CONTROL_BEGIN_ITERATION);
+  begin.start_position_m(0.0);
+  begin.start_time_s(start_s);
+  begin.job_spec(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+  nd::write_checked(control, &begin);
+  fmt::print("rogue: sent BEGIN_ITERATION of its own job {} to axis {} (node {})\n", job_id, options.axis,
+             node->node());
+
+  const double command = options.nan ? std::numeric_limits<double>::quiet_NaN() : options.command;
+  double max_position = 0.0;
+  std::size_t samples = 0, sent = 0;
+  std::string event_text = "none";
+  const auto take_reports = [&](Clock::time_point until) {
+    while (auto sample = feedback.take_until(std::min(until, Clock::now() + std::chrono::milliseconds(1)))) {
+      if (sample->job_id() != job_id || sample->kind() != nd::FEEDBACK_SAMPLE) continue;
+      ++samples;
+      max_position = std::max(max_position, std::abs(sample->true_position_m()));
+    }
+    while (auto event = events.try_take()) {
+      if (event->job_id() == job_id && event->kind() != nd::AXIS_ITERATION_ENDED) {
+        event_text = fmt::format("{}: {}", event->kind() == nd::AXIS_FAULT ? "AXIS_FAULT" : "AXIS_REFUSED",
+                                 event->detail());
+      }
+    }
+  };
+  const auto end = Clock::now() + std::chrono::milliseconds(static_cast<long>(options.seconds * 1e3));
+  for (std::uint64_t cycle = 0; Clock::now() < end && !g_stop.load() && event_text == "none"; ++cycle) {
+    nd::Setpoint setpoint;
+    setpoint.axis(options.axis);
+    setpoint.server(context.identity());
+    setpoint.job_id(job_id);
+    setpoint.iteration(1);
+    setpoint.cycle(cycle);
+    setpoint.command(command);
+    setpoint.send_time_s(realtime ? nd::time_base_now_s(nd::parse_time_base(node->time_base())) - start_s : 0.0);
+    nd::write_checked(setpoints, &setpoint);
+    ++sent;
+    take_reports(Clock::now() + std::chrono::milliseconds(realtime ? 1 : 20));
+  }
+  take_reports(Clock::now() + std::chrono::milliseconds(500));
+  for (const auto kind : {nd::CONTROL_END_ITERATION, nd::CONTROL_END_JOB}) {
+    begin.kind(kind);
+    begin.job_spec({});
+    nd::write_checked(control, &begin);
+  }
+  fmt::print("rogue: axis {}: {} commands of {} sent, {} samples back, largest |position| {:.3g} m, event {}\n",
+             options.axis, sent, command, samples, max_position, event_text);
+  return 0;
+}
+
+int hijack(const Options& options) {
+  nd::DdsContext context(options.dds);
+  const std::string partition = nd::partition_of_axis(options.axis);
+  nd::SampleReader<nd::NodeStatus> statuses(
+      context.reader(context.topic<nd::NodeStatusPubSubType>(nd::kNodeStatusTopic), nd::Delivery::status));
+  nd::SampleReader<nd::JobControl> controls(
+      context.reader(context.topic<nd::JobControlPubSubType>(nd::kJobControlTopic), nd::Delivery::control));
+  auto* control = context.writer(context.topic<nd::JobControlPubSubType>(nd::kJobControlTopic), nd::Delivery::control);
+  auto* status_writer =
+      context.writer(context.topic<nd::NodeStatusPubSubType>(nd::kNodeStatusTopic), nd::Delivery::status);
+  auto* events = context.writer(context.topic<nd::AxisEventPubSubType>(nd::kAxisEventTopic), nd::Delivery::control,
+                                partition);
+  // Both clocks' topics: the rogue does not care which the job uses. It reads the real
+  // setpoints to know the cycle under way.
+  struct Plane {
+    Plane(eprosima::fastdds::dds::DataReader* reader, eprosima::fastdds::dds::DataWriter* setpoint_writer,
+          eprosima::fastdds::dds::DataWriter* feedback_writer)
+        : real(reader), setpoints(setpoint_writer), feedback(feedback_writer) {}
+    nd::SampleReader<nd::Setpoint> real;
+    eprosima::fastdds::dds::DataWriter* setpoints;
+    eprosima::fastdds::dds::DataWriter* feedback;
+  };
+  std::vector<std::unique_ptr<Plane>> planes;
+  for (const bool realtime : {false, true}) {
+    const auto delivery = realtime ? nd::Delivery::stream : nd::Delivery::exchange;
+    auto* setpoint_topic =
+        context.topic<nd::SetpointPubSubType>(realtime ? nd::kRealtimeSetpointTopic : nd::kLockstepSetpointTopic);
+    planes.push_back(std::make_unique<Plane>(
+        context.reader(setpoint_topic, delivery, {partition}), context.writer(setpoint_topic, delivery, partition),
+        context.writer(context.topic<nd::FeedbackPubSubType>(realtime ? nd::kRealtimeFeedbackTopic
+                                                                      : nd::kLockstepFeedbackTopic),
+                       delivery, partition)));
+  }
+  const auto node = find_node(statuses, options.axis, Clock::now() + std::chrono::seconds(10));
+  if (!node) {
+    fmt::print("rogue: no node hosts axis {}\n", options.axis);
+    return 1;
+  }
+  fmt::print("rogue: waiting for a job on axis {} (node {}, participant {})\n", options.axis, node->node(),
+             node->participant());
+  std::fflush(stdout);
+
+  std::optional<nd::JobControl> job;  // the newest BEGIN_ITERATION of a real server on the axis
+  std::uint64_t cycle = 0;
+  std::size_t setpoints = 0, feedback = 0, faults = 0, ends = 0, spoofs = 0;
+  auto next_slow = Clock::now();
+  const auto end = Clock::now() + std::chrono::milliseconds(static_cast<long>(options.seconds * 1e3));
+  while (Clock::now() < end && !g_stop.load()) {
+    while (auto c = controls.try_take()) {
+      if (c->axis() != options.axis || nd::sent_by(controls.last_sender(), context.identity())) continue;
+      if (c->kind() == nd::CONTROL_BEGIN_ITERATION) {
+        if (!job) fmt::print("rogue: job {} of server {} found; attacking\n", c->job_id(), c->server());
+        std::fflush(stdout);
+        job = *c;
+        cycle = 0;
+      }
+    }
+    for (auto& plane : planes) {
+      while (auto real = plane->real.try_take()) {
+        if (!nd::sent_by(plane->real.last_sender(), context.identity())) cycle = std::max(cycle, real->cycle());
+      }
+    }
+    if (job) {
+      for (auto& plane : planes) {
+        // The sequence number that once made every later command of the server stale, and a
+        // NaN command for the next cycle, both in the server's name.
+        for (const std::uint64_t k : {std::numeric_limits<std::uint64_t>::max() - 1, cycle + 1}) {
+          nd::Setpoint s;
+          s.axis(options.axis);
+          s.server(job->server());
+          s.job_id(job->job_id());
+          s.iteration(job->iteration());
+          s.cycle(k);
+          s.command(std::numeric_limits<double>::quiet_NaN());
+          s.send_time_s(0.0);
+          nd::write_checked(plane->setpoints, &s);
+          ++setpoints;
+        }
+        // Feedback in the node's name, 5 mm off, for the cycles the server is about to read.
+        for (std::uint64_t k = cycle; k < cycle + 3; ++k) {
+          nd::Feedback f;
+          f.axis(options.axis);
+          f.server(job->server());
+          f.job_id(job->job_id());
+          f.iteration(job->iteration());
+          f.cycle(k);
+          f.kind(nd::FEEDBACK_SAMPLE);
+          f.position_m(0.005);
+          f.true_position_m(0.005);
+          nd::write_checked(plane->feedback, &f);
+          ++feedback;
+        }
+      }
+    }
+    if (job && Clock::now() >= next_slow) {
+      next_slow = Clock::now() + std::chrono::milliseconds(100);
+      nd::AxisEvent fault;
+      fault.axis(options.axis);
+      fault.server(job->server());
+      fault.job_id(job->job_id());
+      fault.iteration(job->iteration());
+      fault.kind(nd::AXIS_FAULT);
+      fault.detail("forged fault");
+      nd::write_checked(events, &fault);
+      ++faults;
+      nd::JobControl release = *job;
+      release.kind(nd::CONTROL_END_JOB);
+      release.job_spec({});
+      nd::write_checked(control, &release);
+      ++ends;
+      // The node's own status, re-signed with its participant: leaving, and held by another
+      // server; then the node's name from the rogue's participant; then a node of the rogue's
+      // claiming the real node's axes.
+      // Alternately, as a node status is kept per node name: the last one of a name wins.
+      nd::NodeStatus spoof = *node;
+      spoof.health(nd::NODE_LEAVING);
+      nd::AxisHold hold;
+      hold.axis(options.axis);
+      hold.server(std::string(24, 'f'));
+      hold.job_id(1);
+      spoof.holds({hold});
+      if (faults % 2 == 0) {
+        spoof = *node;
+        spoof.participant(context.identity());
+      }
+      nd::write_checked(status_writer, &spoof);
+      spoof = *node;
+      spoof.participant(context.identity());
+      spoof.node("rogue-node");
+      nd::write_checked(status_writer, &spoof);
+      spoofs += 2;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(job ? 1 : 10));
+  }
+  fmt::print("rogue: sent in others' names to axis {}: {} setpoints, {} feedback, {} faults, {} END_JOB, {} node "
+             "statuses\n",
+             options.axis, setpoints, feedback, faults, ends, spoofs);
+  return job ? 0 : 4;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"netmc_rogue_participant: attacks a netmc DDS domain (integration tests only)"};
+  app.require_subcommand(1);
+  Options options;
+  options.dds.transport = nd::Transport::udp;
+  options.dds.name = "rogue";
+  for (auto* command : {app.add_subcommand("drive", "Start a job of its own on an idle axis and drive it"),
+                        app.add_subcommand("hijack", "Speak for a running job's server and node")}) {
+    command->add_option("--domain", options.dds.domain_id)->check(CLI::Range(0, 230));
+    command->add_option("--axis", options.axis)->required();
+    command->add_option("--seconds", options.seconds, "Give up after this long");
+  }
+  auto* drive_command = app.get_subcommand("drive");
+  drive_command->add_option("--clock", options.clock)->check(CLI::IsMember({"lockstep", "realtime"}));
+  drive_command->add_option("--command", options.command, "The command to send every cycle");
+  drive_command->add_flag("--nan", options.nan, "Send NaN commands");
+  CLI11_PARSE(app, argc, argv);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  try {
+    return app.got_subcommand("drive") ? drive(options) : hijack(options);
+  } catch (const std::exception& error) {
+    fmt::print("rogue: error: {}\n", error.what());
+    return 1;
+  }
+}
