@@ -17,6 +17,7 @@ namespace netmc::cli {
 int run_netmc(int argc, const char* const* argv) {
   verbosity() = {};
   CLI::App app{"netmc: networked motion control - studies of contouring under network delay", "netmc"};
+  app.set_version_flag("--version", std::string("netmc ") + NETMC_VERSION);
   app.require_subcommand(0, 1);
   add_verbosity_flags(&app);
   app.footer(R"(Examples:
@@ -53,6 +54,8 @@ Takes every flag and preset of netmc sim; --quiet prints only the final table.)"
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // CLI11's message names the flag; one line, with where to look.

@@ -42,6 +42,7 @@ int serve(Node& node) {
 
 int main(int argc, char** argv) {
   CLI::App app{"netmc-axis: a remote axis node hosting a simulated plant, driven over DDS"};
+  app.set_version_flag("--version", std::string("netmc-axis ") + NETMC_VERSION);
   netmc::axis::AxisNodeConfig config;
   std::string axes = "x,y";
   std::string clock = "lockstep";

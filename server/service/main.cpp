@@ -19,6 +19,7 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"netmc-server: closes contouring loops of remote axis nodes over DDS"};
+  app.set_version_flag("--version", std::string("netmc-server ") + NETMC_VERSION);
   // Not 7400: that is DDS domain 0's discovery port.
   std::string listen = "127.0.0.1:7300";
   int axis_timeout_ms = 2000;

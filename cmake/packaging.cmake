@@ -1,0 +1,61 @@
+# Install rules and the .deb (included by the top-level CMakeLists.txt once every target exists).
+include(CMakePackageConfigHelpers)
+
+# The programs.
+install(TARGETS netmc netmc-server netmc-axis RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+
+# The pure libraries and their headers: a project that links netmc::control needs Eigen, and
+# neither Fast DDS nor protobuf.
+foreach(library control plant netsim random)
+  set_target_properties(netmc_${library} PROPERTIES EXPORT_NAME ${library})
+endforeach()
+install(TARGETS netmc_control netmc_plant netmc_netsim netmc_random EXPORT netmcTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+foreach(dir control plant netsim)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/netmc/${dir}
+    FILES_MATCHING PATTERN "*.hpp")
+endforeach()
+set(NETMC_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/netmc)
+install(EXPORT netmcTargets NAMESPACE netmc:: DESTINATION ${NETMC_CMAKE_DIR})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/netmcConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/netmcConfig.cmake INSTALL_DESTINATION ${NETMC_CMAKE_DIR})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/netmcConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/netmcConfig.cmake ${PROJECT_BINARY_DIR}/netmcConfigVersion.cmake
+  DESTINATION ${NETMC_CMAKE_DIR})
+
+# systemd units (their ExecStart names the installed programs) and what an operator starts from.
+# Written at install time: the prefix (cmake --install --prefix, or /usr in the .deb) is known
+# only then.
+foreach(unit netmc-server.service netmc-axis@.service)
+  install(CODE "
+    set(NETMC_BINDIR \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_BINDIR}\")
+    set(NETMC_DOCDIR \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DOCDIR}\")
+    set(NETMC_EXAMPLES \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DATADIR}/netmc/examples/etc-netmc\")
+    configure_file(\"${PROJECT_SOURCE_DIR}/server/systemd/${unit}.in\"
+      \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/lib/systemd/system/${unit}\" @ONLY)
+    message(STATUS \"Installing: \$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/lib/systemd/system/${unit}\")")
+endforeach()
+install(FILES ${PROJECT_SOURCE_DIR}/server/systemd/server.env ${PROJECT_SOURCE_DIR}/server/systemd/axis.env
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/etc-netmc)
+install(FILES ${PROJECT_SOURCE_DIR}/server/dds/profiles/udp_only.xml
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/dds-profiles)
+install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/make-lab-pki.sh DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc)
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+
+# The .deb: `cpack -G DEB` in the build directory. Its dependencies are the Debian runtime
+# packages of the programs' shared libraries, found by dpkg-shlibdeps.
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME netmc)
+set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Networked motion control over DDS: server, axis nodes, client and libraries")
+set(CPACK_PACKAGE_CONTACT "netmc <netmc@localhost>")
+set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# gnuplot draws `--plot` figures; Eigen's headers are what netmc::control's users compile with.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "gnuplot-nox, libeigen3-dev")
+set(CPACK_STRIP_FILES ON)
+include(CPack)

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# What a lab installs: `cmake --install` into a fresh prefix puts the three programs (each
+# answers --version with the project's version), the pure libraries with their headers and CMake
+# package, the systemd units (naming the installed programs; systemd-analyze verifies them) and
+# the examples in place; a project of its own (tests/install/consumer) finds netmc with
+# find_package, links netmc::control without Fast DDS or protobuf, and its ADRC loop settles.
+# Then CPack's .deb: its dependencies are Debian's runtime packages, its files under /usr.
+# Usage: install_package.sh BUILD_DIR
+set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
+build=$(cd "$1" && pwd)
+source_dir=$(cd "$(dirname "$0")/../.." && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+version=$(sed -n 's/^project(netmc VERSION \([0-9.]*\).*/\1/p' "$source_dir/CMakeLists.txt")
+prefix=$tmp/prefix
+
+cmake --install "$build" --prefix "$prefix" >"$tmp/install.log"
+for program in netmc netmc-server netmc-axis; do
+  out=$("$prefix/bin/$program" --version)
+  [ "$out" = "$program $version" ] || { echo "FAIL: $program --version said '$out'"; exit 1; }
+done
+echo "installed: netmc, netmc-server, netmc-axis --version: $version"
+for file in include/netmc/control/adrc_controller.hpp include/netmc/plant/plant_catalog.hpp \
+  include/netmc/netsim/delay_model.hpp share/netmc/examples/etc-netmc/server.env \
+  share/netmc/examples/dds-profiles/udp_only.xml share/doc/netmc/LICENSE; do
+  [ -f "$prefix/$file" ] || { echo "FAIL: $file not installed"; exit 1; }
+done
+config=$(find "$prefix" -name netmcConfig.cmake)
+[ -n "$config" ] || { echo "FAIL: no netmcConfig.cmake"; exit 1; }
+units=$prefix/lib/systemd/system
+grep -q "^ExecStart=$prefix/bin/netmc-server " "$units/netmc-server.service" &&
+  grep -q "^ExecStart=$prefix/bin/netmc-axis --node %i " "$units/netmc-axis@.service" ||
+  { echo "FAIL: the units do not name the installed programs"; cat "$units"/*; exit 1; }
+if command -v systemd-analyze >/dev/null; then
+  cp "$units/netmc-axis@.service" "$units/netmc-axis@lab1.service"
+  (cd "$units" && SYSTEMD_LOG_LEVEL=warning systemd-analyze verify --man=no netmc-server.service netmc-axis@lab1.service) \
+    2>&1 | tee "$tmp/verify.log"
+  ! grep -v "^$" "$tmp/verify.log" | grep -q . || { echo "FAIL: systemd-analyze verify complained"; exit 1; }
+  rm "$units/netmc-axis@lab1.service"
+  echo "systemd-analyze verify: netmc-server.service, netmc-axis@.service: no complaint"
+fi
+
+cmake -S "$source_dir/tests/install/consumer" -B "$tmp/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" >"$tmp/consumer-configure.log"
+cmake --build "$tmp/consumer" >"$tmp/consumer-build.log"
+if grep -Eq "fastrtps|fastcdr|protobuf" "$tmp/consumer/build.ninja"; then
+  echo "FAIL: the consumer's build names Fast DDS or protobuf"; exit 1
+fi
+"$tmp/consumer/adrc_step"
+echo "find_package(netmc) + netmc::control: built without Fast DDS or protobuf, and ran"
+
+cpack --config "$build/CPackConfig.cmake" -B "$tmp/package" >"$tmp/cpack.log" ||
+  { cat "$tmp/cpack.log"; exit 1; }
+deb=$(ls "$tmp/package"/netmc_"$version"_*.deb)
+depends=$(dpkg-deb -f "$deb" Depends)
+echo "$(basename "$deb"): $(du -k "$deb" | cut -f1) KiB, Depends: $depends"
+for package in libfastrtps2.9 libprotobuf32 libc6 libstdc++6; do
+  [[ "$depends" == *"$package"* ]] || { echo "FAIL: the .deb does not depend on $package"; exit 1; }
+done
+dpkg-deb -c "$deb" >"$tmp/contents"
+for file in ./usr/bin/netmc ./usr/bin/netmc-server ./usr/bin/netmc-axis ./usr/lib/systemd/system/netmc-server.service \
+  ./usr/include/netmc/control/adrc_controller.hpp; do
+  grep -q " $file\$" "$tmp/contents" || { echo "FAIL: $file not in the .deb"; exit 1; }
+done
+dpkg-deb --fsys-tarfile "$deb" | tar -xO ./usr/lib/systemd/system/netmc-axis@.service | grep -q "^ExecStart=/usr/bin/netmc-axis " ||
+  { echo "FAIL: the packaged unit does not name /usr/bin/netmc-axis"; exit 1; }
+echo "the .deb holds the programs, libraries, headers and units under /usr"
