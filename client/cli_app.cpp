@@ -35,6 +35,8 @@ Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
   const auto run_plot = add_plot_command(app);
   const auto run_run = add_run_command(app);
   const auto run_nodes = add_nodes_command(app);
+  const auto run_status = add_status_command(app);
+  const auto run_cancel = add_cancel_command(app);
   const auto run_cee = add_cee_command(app);
   app.get_subcommand("run")->footer(R"(Examples:
   # with netmc-server and two netmc-axis nodes running (README "Distributed runs")
@@ -70,6 +72,8 @@ Takes every flag and preset of netmc sim; --quiet prints only the final table.)"
     if (app.got_subcommand("sweep")) return run_sweep();
     if (app.got_subcommand("plot")) return run_plot();
     if (app.got_subcommand("run")) return run_run();
+    if (app.got_subcommand("status")) return run_status();
+    if (app.got_subcommand("cancel")) return run_cancel();
     if (app.got_subcommand("nodes")) return run_nodes();
     if (app.got_subcommand("cee")) return run_cee();
     std::cout << app.help();

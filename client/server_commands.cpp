@@ -144,4 +144,72 @@ std::function<int()> add_nodes_command(CLI::App& app) {
   };
 }
 
+namespace {
+
+void print_jobs(const netmc::v1::StatusReply& reply) {
+  fmt::print("{:>6}  {:<10} {:>10}  {:<24} {}\n", "job", "state", "iterations", "label", "note");
+  for (const auto& job : reply.jobs()) {
+    const std::string note = !job.waiting_for().empty() ? "waits for " + job.waiting_for() : job.error();
+    fmt::print("{:>6}  {:<10} {:>10}  {:<24} {}\n", job.job_id(), job.state(),
+               fmt::format("{}/{}", job.iterations_done(), job.iterations_total()), job.label().substr(0, 24), note);
+  }
+  if (reply.jobs_size() == 0) fmt::print("(no job)\n");
+}
+
+}  // namespace
+
+std::function<int()> add_status_command(CLI::App& app) {
+  struct Flags {
+    std::string server = "127.0.0.1:7300";
+    std::uint64_t job = 0;
+    bool json = false;
+  };
+  auto flags = std::make_shared<Flags>();
+  CLI::App* status = app.add_subcommand("status", "The jobs a netmc-server holds: queued, running and the last 256 ended");
+  status->add_option("JOB", flags->job, "Only this job (its id, as `netmc run` prints it)")->check(CLI::PositiveNumber);
+  status->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT");
+  status->add_flag("--json", flags->json, "Print the reply as JSON (netmc.v1.StatusReply), for scripts");
+  return [flags]() -> int {
+    management::ManagementClient client(flags->server, kServerConnectTimeout);
+    netmc::v1::Request request;
+    request.set_request_id(1);
+    request.mutable_status()->set_job_id(flags->job);
+    client.send(request);
+    const auto response = expect_response(client, std::chrono::seconds(10), flags->server);
+    if (flags->job != 0 && response.status().jobs_size() == 0) {
+      throw std::runtime_error("server " + flags->server + ": no job " + std::to_string(flags->job) +
+                               " (never submitted, or ended more than 256 jobs ago)");
+    }
+    if (flags->json) {
+      fmt::print("{}\n", job::to_json(response.status()));
+    } else {
+      print_jobs(response.status());
+    }
+    return 0;
+  };
+}
+
+std::function<int()> add_cancel_command(CLI::App& app) {
+  struct Flags {
+    std::string server = "127.0.0.1:7300";
+    std::uint64_t job = 0;
+  };
+  auto flags = std::make_shared<Flags>();
+  CLI::App* cancel = app.add_subcommand(
+      "cancel", "Cancel a job of another connection: needs the server's admin token (NETMC_TOKEN_FILE naming the "
+                "file of netmc-server --admin-token-file); Ctrl-C on `netmc run` cancels its own job");
+  cancel->add_option("JOB", flags->job, "The job's id")->required()->check(CLI::PositiveNumber);
+  cancel->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT");
+  return [flags]() -> int {
+    management::ManagementClient client(flags->server, kServerConnectTimeout);
+    netmc::v1::Request request;
+    request.set_request_id(1);
+    request.mutable_cancel()->set_job_id(flags->job);
+    client.send(request);
+    const auto response = expect_response(client, std::chrono::seconds(10), flags->server);
+    print_jobs(response.status());
+    return 0;
+  };
+}
+
 }  // namespace netmc::cli

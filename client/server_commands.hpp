@@ -15,6 +15,10 @@ namespace netmc::cli {
 
 std::function<int()> add_run_command(CLI::App& app);
 std::function<int()> add_nodes_command(CLI::App& app);
+// netmc status [JOB]: the server's jobs (state, iterations, what a queued one waits behind).
+std::function<int()> add_status_command(CLI::App& app);
+// netmc cancel JOB: with the admin token, any job; otherwise the server refuses and says why.
+std::function<int()> add_cancel_command(CLI::App& app);
 
 inline constexpr auto kServerConnectTimeout = std::chrono::milliseconds(3000);
 

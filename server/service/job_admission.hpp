@@ -6,6 +6,7 @@
 // share them.
 
 #include <cstddef>
+#include <cstdint>
 #include <set>
 #include <string>
 #include <vector>
@@ -16,5 +17,17 @@ namespace netmc::service {
 std::vector<std::size_t> admissible_jobs(const std::vector<std::vector<std::string>>& queued,
                                          const std::set<std::string>& busy_axes, std::size_t running,
                                          std::size_t max_running);
+
+// A job of the server, as waiting_for sees it.
+struct JobAxes {
+  std::uint64_t id = 0;
+  std::vector<std::string> axes;
+};
+
+// Why the queued job `axes` has not started: the first running job, then the first job queued
+// before it, that shares an axis ("job 3 (axis x)", "job 4, queued before it (axis y)"), else the
+// running-job limit; empty if nothing holds it back.
+std::string waiting_for(const std::vector<std::string>& axes, const std::vector<JobAxes>& running,
+                        const std::vector<JobAxes>& queued_before, std::size_t max_running);
 
 }  // namespace netmc::service

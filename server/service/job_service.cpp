@@ -54,7 +54,10 @@ JobService::~JobService() {
   {
     std::lock_guard lock(mutex_);
     stopping_ = true;
-    for (auto& [id, job] : jobs_) job->cancel.store(true);
+    for (auto& [id, job] : jobs_) {
+      job->cancel_reason = "the server is shutting down";
+      job->cancel.store(true);
+    }
   }
   wake_.notify_all();
   validator_.join();
@@ -62,7 +65,7 @@ JobService::~JobService() {
 }
 
 void JobService::handle(const std::shared_ptr<management::Session>& session,
-                        const netmc::v1::Request& request) {
+                        const netmc::v1::Request& request, bool admin) {
   netmc::v1::Response response;
   response.set_request_id(request.request_id());
   switch (request.kind_case()) {
@@ -86,12 +89,14 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
                                      "cancel: no job " + std::to_string(request.cancel().job_id())));
         return;
       }
-      if (it->second->session.lock() != session) {
+      if (!admin && it->second->session.lock() != session) {
         session->send(error_response(request.request_id(), "cancel: job " + std::to_string(it->first) +
                                                                " was submitted on another connection; only it "
-                                                               "may cancel the job"));
+                                                               "(or a client with the admin token) may cancel the job"));
         return;
       }
+      it->second->cancel_reason = admin && it->second->session.lock() != session ? "cancelled by an admin (netmc cancel)"
+                                                                                   : "cancelled by its client";
       it->second->cancel.store(true);
       *response.mutable_status()->add_jobs() = it->second->status;
       break;
@@ -212,7 +217,7 @@ void JobService::tend_jobs() {
   for (const auto& [id, thread] : running_) {
     Job& job = *jobs_.at(id);
     if (!job.cancel.load() && gone(job)) {
-      std::cout << "netmc-server: job " << id << " cancelled: its client disconnected" << std::endl;
+      job.cancel_reason = "its client disconnected";
       job.cancel.store(true);
     }
   }
@@ -242,6 +247,7 @@ void JobService::schedule() {
       queue_.erase(std::find(queue_.begin(), queue_.end(), job));
       busy_axes_.insert(job->axes.begin(), job->axes.end());
       job->status.set_state("running");
+      job->status.clear_waiting_for();
       std::string axes;
       for (const auto& axis : job->axes) axes += (axes.empty() ? "" : ",") + axis;
       std::cout << "netmc-server: job " << job->id << " running on axes " << axes << " (" << running_.size() + 1
@@ -250,6 +256,13 @@ void JobService::schedule() {
         run(*job);
         finish(job);
       }));
+    }
+    // What each waiting job waits behind, for `netmc status`.
+    std::vector<JobAxes> running_axes, queued_before;
+    for (const auto& [id, thread] : running_) running_axes.push_back({id, jobs_.at(id)->axes});
+    for (const auto& job : queue_) {
+      job->status.set_waiting_for(waiting_for(job->axes, running_axes, queued_before, options_.max_running_jobs));
+      queued_before.push_back({job->id, job->axes});
     }
     tend_jobs();
     // Woken by submissions and ends of jobs; every quarter second anyway, to see closed clients.
@@ -444,15 +457,17 @@ void JobService::run(Job& job) {
   } catch (const std::exception& error) {
     state = job.cancel.load() ? "cancelled" : "failed";
     done.set_error(error.what());
-    std::cerr << "netmc-server: job " << job.id << " " << state << ": " << error.what() << std::endl;
   }
-  done.set_state(state);
-  std::cout << "netmc-server: job " << job.id << " " << state << std::endl;
   {
     std::lock_guard lock(mutex_);
+    // A cancelled job ends for its reason; what it was doing when it stopped matters less.
+    if (state == "cancelled") done.set_error(job.cancel_reason);
     job.status.set_state(state);
     job.status.set_error(done.error());
   }
+  done.set_state(state);
+  std::cout << "netmc-server: job " << job.id << " " << state << (done.error().empty() ? "" : ": " + done.error())
+            << std::endl;
   reply(job, finished);
 }
 

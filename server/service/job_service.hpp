@@ -44,7 +44,10 @@ class JobService {
 
   // Called on the management endpoint's thread for every request; never blocks on a job spec
   // (submitted specs are checked on a thread of their own).
-  void handle(const std::shared_ptr<management::Session>& session, const netmc::v1::Request& request);
+  // `admin`: the request showed the admin token (--admin-token-file): it may cancel any job;
+  // otherwise only the connection that submitted a job may.
+  void handle(const std::shared_ptr<management::Session>& session, const netmc::v1::Request& request,
+              bool admin = false);
 
  private:
   struct Job {
@@ -54,6 +57,7 @@ class JobService {
     std::uint64_t request_id = 0;
     netmc::v1::JobStatus status;
     std::atomic<bool> cancel{false};
+    std::string cancel_reason;  // set with `cancel`, under the service's mutex
     std::vector<std::string> axes;
     bool keep_after_disconnect = false;
   };

@@ -62,6 +62,10 @@ int main(int argc, char** argv) {
   app.add_option("--token-file", token_file,
                  "Clients must show the token in this file (one line, 16+ characters; clients name the "
                  "file in $NETMC_TOKEN_FILE); default: no token asked (keep --listen on loopback then)");
+  std::string admin_token_file;
+  app.add_option("--admin-token-file", admin_token_file,
+                 "A client showing the token in this file may also cancel jobs of other connections "
+                 "(netmc cancel); it is accepted wherever --token-file's is");
   netmc::dds::add_time_base_option(app, time_base);
   netmc::dds::add_dds_options(app, dds);
   netmc::realtime::RealtimeScheduling scheduling;
@@ -89,6 +93,8 @@ int main(int argc, char** argv) {
   try {
     std::optional<netmc::management::AccessToken> token;
     if (!token_file.empty()) token = netmc::management::AccessToken::from_file(token_file);
+    std::optional<netmc::management::AccessToken> admin_token;
+    if (!admin_token_file.empty()) admin_token = netmc::management::AccessToken::from_file(admin_token_file);
     // Before the participant: its threads, and every job thread, inherit the scheduling.
     const auto scheduling_outcome = netmc::realtime::apply_process_scheduling(scheduling);
     for (const auto& fallback : scheduling_outcome.fallbacks) {
@@ -107,8 +113,9 @@ int main(int argc, char** argv) {
     boost::asio::io_context io;
     netmc::management::ManagementServer server(
         io, listen.substr(0, colon), static_cast<std::uint16_t>(port),
-        {[&jobs, &token](netmc::management::Session& session, const netmc::v1::Request& request) {
-          if (token && !token->accepts(request.token())) {
+        {[&jobs, &token, &admin_token](netmc::management::Session& session, const netmc::v1::Request& request) {
+          const bool admin = admin_token && admin_token->accepts(request.token());
+          if (token && !admin && !token->accepts(request.token())) {
             netmc::v1::Response refusal;
             refusal.set_request_id(request.request_id());
             refusal.mutable_error()->set_message("unauthenticated: this server asks for its token "
@@ -117,7 +124,7 @@ int main(int argc, char** argv) {
             session.close();
             return;
           }
-          jobs.handle(session.shared_from_this(), request);
+          jobs.handle(session.shared_from_this(), request, admin);
         }},
         limits);
     boost::asio::signal_set signals(io, SIGINT, SIGTERM);

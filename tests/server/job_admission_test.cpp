@@ -9,6 +9,19 @@ namespace {
 
 using Axes = std::vector<std::string>;
 
+TEST(JobAdmission, AWaitingJobNamesWhatItWaitsBehind) {
+  const std::vector<JobAxes> running{{3, {"u", "v"}}, {5, {"x", "w"}}};
+  EXPECT_EQ(waiting_for({"x", "y"}, running, {}, 32), "job 5 (axis x)");
+  // A running job comes before a queued one; among queued ones the earliest sharing an axis.
+  EXPECT_EQ(waiting_for({"y", "x"}, running, {{6, {"y"}}}, 32), "job 5 (axis x)");
+  EXPECT_EQ(waiting_for({"y"}, running, {{6, {"z"}}, {7, {"y", "z"}}, {8, {"y"}}}, 32),
+            "job 7, queued before it (axis y)");
+  EXPECT_EQ(waiting_for({"p"}, running, {}, 2), "the running-job limit (2)");
+  EXPECT_EQ(waiting_for({"p"}, running, {}, 32), "");
+  // Consistent with admissible_jobs: the job it says may start is the one that starts.
+  EXPECT_EQ(admissible_jobs({Axes{"p"}}, {"u", "v", "x", "w"}, 2, 32), (std::vector<std::size_t>{0}));
+}
+
 TEST(JobAdmission, JobsOnDisjointAxesStartTogether) {
   EXPECT_EQ(admissible_jobs({Axes{"x", "y"}, Axes{"u", "v"}}, {}, 0, 32), (std::vector<std::size_t>{0, 1}));
 }

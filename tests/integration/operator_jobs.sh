@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# What an operator does with jobs, on loopback in lockstep, with a client token and an admin
+# token: Ctrl-C on `netmc run` cancels its job (`netmc status` shows it cancelled) and the job
+# queued behind it, which `netmc status` showed waiting for it, starts at once; `netmc cancel`
+# of another connection's job is refused with the client token and done with the admin token.
+# Usage: operator_jobs.sh BUILD_DIR
+set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
+build=$1
+source "$(dirname "$0")/lib.sh"
+netmc=$build/client/netmc
+now_ms() { date +%s%3N; }
+
+head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/token"
+head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/admin"
+start x "$build/server/axis/netmc-axis" --node ox --axes x --domain "$domain" --transport udp
+start y "$build/server/axis/netmc-axis" --node oy --axes y --domain "$domain" --transport udp
+start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+  --token-file "$tmp/token" --admin-token-file "$tmp/admin"
+port=$(server_port 127.0.0.1)
+export NETMC_TOKEN_FILE=$tmp/token
+server=(--server "127.0.0.1:$port")
+long=(--controller adrc+ilccc --iterations 500)
+
+# state JOB: the job's state as `netmc status JOB` prints it.
+state() { "$netmc" status "$1" "${server[@]}" 2>/dev/null | awk -v id="$1" '$1 == id { print $2 }'; }
+wait_state() {  # JOB STATE SECONDS
+  local until=$(( $(now_ms) + $3 * 1000 ))
+  while [ "$(state "$1")" != "$2" ]; do
+    [ "$(now_ms)" -lt "$until" ] || { echo "FAIL: job $1 is not $2 after $3 s"; "$netmc" status "${server[@]}"; exit 1; }
+    sleep 0.05
+  done
+}
+
+for _ in $(seq 100); do
+  [ "$("$netmc" nodes "${server[@]}" | grep -c '^o[xy] ')" -eq 2 ] && break
+  sleep 0.1
+done
+# Job 1, long; `env --default-signal=INT`: a background job of a script starts with SIGINT ignored.
+env --default-signal=INT "$netmc" run "${server[@]}" --quiet "${long[@]}" >"$tmp/first.txt" 2>&1 &
+first_pid=$!
+wait_state 1 running 20
+until "$netmc" status 1 "${server[@]}" | grep -q "running  *[1-9][0-9]*/500"; do sleep 0.05; done
+# Job 2 on the same axes waits behind it, and says so.
+"$netmc" run "${server[@]}" --quiet --controller adrc --iterations 1 --json "$tmp/second.json" >"$tmp/second.txt" 2>&1 &
+second_pid=$!
+wait_state 2 queued 10
+for _ in $(seq 40); do
+  "$netmc" status "${server[@]}" >"$tmp/status.txt"
+  grep -q "waits for job 1 (axis x)" "$tmp/status.txt" && break
+  sleep 0.05
+done
+cat "$tmp/status.txt"
+grep -q "^ *2 *queued .*waits for job 1 (axis x)" "$tmp/status.txt" || { echo "FAIL: job 2 does not say what it waits for"; exit 1; }
+
+kill -INT "$first_pid"
+interrupted=$(now_ms)
+first_rc=0
+wait "$first_pid" || first_rc=$?
+[ "$first_rc" -ne 0 ] || { echo "FAIL: netmc run exited 0 after Ctrl-C"; exit 1; }
+wait_state 1 cancelled 5
+"$netmc" status 1 "${server[@]}" | grep -q "its client disconnected" || { echo "FAIL: the status does not say why"; exit 1; }
+cancelled_ms=$(( $(now_ms) - interrupted ))
+wait "$second_pid" || { echo "FAIL: job 2 failed"; cat "$tmp/second.txt"; exit 1; }
+second_ms=$(( $(now_ms) - interrupted ))
+"$netmc" status 1 "${server[@]}"
+echo "Ctrl-C on netmc run: job 1 cancelled after $cancelled_ms ms; job 2, queued behind it, done $second_ms ms after the Ctrl-C"
+[ "$second_ms" -lt 10000 ] || { echo "FAIL: job 2 did not start at once"; exit 1; }
+
+# netmc cancel: another connection's job.
+"$netmc" run "${server[@]}" --quiet "${long[@]}" >"$tmp/third.txt" 2>&1 &
+third_pid=$!
+wait_state 3 running 20
+refused=0
+"$netmc" cancel 3 "${server[@]}" >"$tmp/cancel.txt" 2>&1 || refused=$?
+[ "$refused" -ne 0 ] && grep -q "submitted on another connection" "$tmp/cancel.txt" ||
+  { echo "FAIL: netmc cancel without the admin token was not refused"; cat "$tmp/cancel.txt"; exit 1; }
+echo "netmc cancel 3 with the client token: $(tail -n 1 "$tmp/cancel.txt")"
+NETMC_TOKEN_FILE=$tmp/admin "$netmc" cancel 3 "${server[@]}"
+wait_state 3 cancelled 5
+third_rc=0
+wait "$third_pid" || third_rc=$?
+[ "$third_rc" -ne 0 ] && grep -q "job 3 .* cancelled: cancelled by an admin" "$tmp/third.txt" ||
+  { echo "FAIL: the cancelled job's client did not say so"; cat "$tmp/third.txt"; exit 1; }
+echo "netmc cancel 3 with the admin token: cancelled; its client: $(tail -n 1 "$tmp/third.txt")"
+echo "server log:"
+sed 's/^/  /' "$tmp/server.log"
