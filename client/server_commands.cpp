@@ -93,6 +93,8 @@ std::function<int()> add_run_command(CLI::App& app) {
   add_study_flags(run, flags->study);
   return [flags]() -> int {
     const StudyPlan plan = plan_from_flags(flags->study);
+    if (!flags->study.json_path.empty()) check_output_path(flags->study.json_path, "--json");
+    std::ostream& report = is_standard_output(flags->study.json_path) ? std::cerr : std::cout;
     management::ManagementClient client(flags->server, kServerConnectTimeout);
     std::vector<RunOutcome> outcomes;
     std::uint64_t request_id = 1;
@@ -100,9 +102,9 @@ std::function<int()> add_run_command(CLI::App& app) {
       outcomes.push_back(run_job_on_server(client, spec, request_id++, flags->server,
                                            verbosity().quiet));
     }
-    if (!flags->study.json_path.empty()) write_file_atomically(flags->study.json_path, study_json(outcomes));
-    print_study_table(std::cout, plan, outcomes);
-    if (flags->study.curve) print_learning_curve(std::cout, outcomes);
+    if (!flags->study.json_path.empty()) write_output(flags->study.json_path, study_json(outcomes));
+    print_study_table(report, plan, outcomes);
+    if (flags->study.curve) print_learning_curve(report, outcomes);
     return 0;
   };
 }

@@ -66,16 +66,21 @@ every run. Output files are written whole, after every run has finished.)");
     if (!flags->plot_dir.empty() && std::any_of(plan.jobs.begin(), plan.jobs.end(), job::is_spatial_job)) {
       throw std::invalid_argument("--plot: the figures are planar; a three-axis run writes its traces with --csv");
     }
+    // Checked before the study runs: a bad path fails in a millisecond, not after the work.
+    if (!flags->study.json_path.empty()) check_output_path(flags->study.json_path, "--json");
+    if (!flags->csv_dir.empty()) check_output_directory(flags->csv_dir, "--csv");
+    if (!flags->plot_dir.empty()) check_output_directory(flags->plot_dir, "--plot");
+    std::ostream& report = is_standard_output(flags->study.json_path) ? std::cerr : std::cout;
     spdlog::info("sim: {} runs on {} threads", plan.jobs.size(), threads);
     const auto outcomes = run_study_in_process(plan, traces, threads);
     // Outputs are rendered completely before any file is written.
     const std::string json = flags->study.json_path.empty() && flags->plot_dir.empty()
                                  ? std::string()
                                  : study_json(outcomes);
-    if (!flags->study.json_path.empty()) write_file_atomically(flags->study.json_path, json);
+    if (!flags->study.json_path.empty()) write_output(flags->study.json_path, json);
     if (!flags->csv_dir.empty()) write_trace_directory(flags->csv_dir, outcomes);
-    print_study_table(std::cout, plan, outcomes);
-    if (flags->study.curve) print_learning_curve(std::cout, outcomes);
+    print_study_table(report, plan, outcomes);
+    if (flags->study.curve) print_learning_curve(report, outcomes);
     if (!flags->plot_dir.empty()) {
       const std::filesystem::path dir(flags->plot_dir);
       std::filesystem::create_directories(dir);

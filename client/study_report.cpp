@@ -210,7 +210,20 @@ std::string trace_csv(const std::vector<sim::CycleTrace>& trace) {
   return csv;
 }
 
+bool is_standard_output(const std::string& path) { return path == "-"; }
+
+void write_output(const std::string& path, const std::string& content) {
+  if (!is_standard_output(path)) {
+    write_file_atomically(path, content);
+    return;
+  }
+  std::cout << content;
+  if (!content.empty() && content.back() != '\n') std::cout << '\n';
+  std::cout.flush();
+}
+
 void check_output_path(const std::string& path, const std::string& flag) {
+  if (is_standard_output(path)) return;
   std::filesystem::path directory = std::filesystem::path(path).parent_path();
   if (directory.empty()) directory = ".";
   if (std::filesystem::is_directory(path)) {
@@ -222,6 +235,19 @@ void check_output_path(const std::string& path, const std::string& flag) {
   if (access(directory.c_str(), W_OK) != 0) {
     throw std::invalid_argument(flag + ": directory '" + directory.string() + "' is not writable");
   }
+}
+
+void check_output_directory(const std::string& directory, const std::string& flag) {
+  if (std::filesystem::exists(directory)) {
+    if (!std::filesystem::is_directory(directory)) {
+      throw std::invalid_argument(flag + ": '" + directory + "' is not a directory");
+    }
+    if (access(directory.c_str(), W_OK) != 0) {
+      throw std::invalid_argument(flag + ": directory '" + directory + "' is not writable");
+    }
+    return;
+  }
+  check_output_path(directory, flag);  // made when written: its parent must take it
 }
 
 std::string trace_file_name(std::size_t index, const std::string& label) {

@@ -22,6 +22,12 @@ std::string trace_csv(const std::vector<sim::CycleTrace>& trace);
 // Before a long run: throws std::invalid_argument("<flag>: ...") when `path` cannot be
 // created because its directory is missing or not writable.
 void check_output_path(const std::string& path, const std::string& flag);
+// A directory an output goes into: an existing, writable one, or one whose parent is.
+void check_output_directory(const std::string& directory, const std::string& flag);
+// "-" names standard output (then the report a command prints goes to standard error).
+bool is_standard_output(const std::string& path);
+// Writes `content` to `path` atomically (write_file_atomically), or to standard output for "-".
+void write_output(const std::string& path, const std::string& content);
 // One CSV per run: DIR/<index>-<controller>.csv; the directory is created if needed.
 // The trace file of run `index` (0-based): "<index + 1>-<label>.csv" with every character of the
 // label outside A-Z a-z 0-9 . - _ replaced by _ and at most 64 of them, so a label (from a spec

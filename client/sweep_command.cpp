@@ -85,6 +85,9 @@ every configuration has finished. A run that becomes unstable stops at that iter
     }
     if (!flags->csv_path.empty()) check_output_path(flags->csv_path, "--csv");
     if (!flags->json_path.empty()) check_output_path(flags->json_path, "--json");
+    if (is_standard_output(flags->csv_path) && is_standard_output(flags->json_path)) {
+      throw std::invalid_argument("--csv, --json: only one of them can be '-' (standard output)");
+    }
     if (!flags->plot_dir.empty()) require_gnuplot();
     const auto grid = expand_sweep(flags->axes);
     StudyPlan plan;
@@ -123,21 +126,25 @@ every configuration has finished. A run that becomes unstable stops at that iter
     const bool need_csv = !flags->csv_path.empty() || !flags->plot_dir.empty();
     const std::string csv = need_csv ? sweep_csv(grid, outcomes) : std::string();
     const std::string json = flags->json_path.empty() ? std::string() : sweep_json(grid, outcomes);
-    if (!flags->csv_path.empty()) write_file_atomically(flags->csv_path, csv);
-    if (!flags->json_path.empty()) write_file_atomically(flags->json_path, json);
+    if (!flags->csv_path.empty()) write_output(flags->csv_path, csv);
+    if (!flags->json_path.empty()) write_output(flags->json_path, json);
 
-    print_sweep_summary(std::cout, grid, outcomes);
+    // With an output on standard output, the report goes to standard error.
+    const bool piped = is_standard_output(flags->csv_path) || is_standard_output(flags->json_path);
+    std::FILE* report_file = piped ? stderr : stdout;
+    print_sweep_summary(piped ? std::cerr : std::cout, grid, outcomes);
     std::size_t iterations_run = 0;
     for (const auto& outcome : outcomes) iterations_run += static_cast<std::size_t>(outcome.result.iterations_size());
-    fmt::print("\n{} configurations, {} iterations run, in {:.2f} s ({})\n", grid.size(), iterations_run,
+    fmt::print(report_file, "\n{} configurations, {} iterations run, in {:.2f} s ({})\n", grid.size(), iterations_run,
                seconds, flags->server.empty() ? fmt::format("{} threads", threads) : "server " + flags->server);
-    if (!flags->csv_path.empty()) fmt::print("wrote {}\n", flags->csv_path);
-    if (!flags->json_path.empty()) fmt::print("wrote {}\n", flags->json_path);
+    for (const auto* path : {&flags->csv_path, &flags->json_path}) {
+      if (!path->empty() && !is_standard_output(*path)) fmt::print(report_file, "wrote {}\n", *path);
+    }
     if (!flags->plot_dir.empty()) {
       const std::string data_dir = (std::filesystem::path(flags->plot_dir) / "data").string();
       std::filesystem::create_directories(data_dir);
       const auto figures = sweep_figures(CsvTable::parse(csv, "sweep"), {"e_max_m", "e_sum_m"}, data_dir);
-      for (const auto& file : render_figures(figures, flags->plot_dir, {})) fmt::print("wrote {}\n", file);
+      for (const auto& file : render_figures(figures, flags->plot_dir, {})) fmt::print(report_file, "wrote {}\n", file);
     }
     return 0;
   };

@@ -1,5 +1,7 @@
 #include "server/management/management_client.hpp"
 
+#include "server/management/host_port.hpp"
+
 #include "server/management/access_token.hpp"
 
 #include <array>
@@ -12,33 +14,6 @@ namespace asio = boost::asio;
 using asio::ip::tcp;
 
 namespace {
-
-struct HostPort {
-  std::string host;
-  std::string port;
-};
-
-HostPort parse_host_port(const std::string& text) {
-  const auto bad = [&text] {
-    return std::invalid_argument("--server: expected HOST:PORT, got '" + text + "'");
-  };
-  const auto colon = text.rfind(':');
-  if (colon == std::string::npos) throw bad();
-  std::string host = text.substr(0, colon);
-  const std::string port = text.substr(colon + 1);
-  if (host.size() >= 2 && host.front() == '[' && host.back() == ']') {
-    host = host.substr(1, host.size() - 2);  // [IPv6]:PORT
-  } else if (host.find(':') != std::string::npos) {
-    throw bad();  // a bare IPv6 literal is ambiguous
-  }
-  if (host.empty() || port.empty() || port.size() > 5 ||
-      port.find_first_not_of("0123456789") != std::string::npos) {
-    throw bad();
-  }
-  const int number = std::stoi(port);
-  if (number < 1 || number > 65535) throw bad();
-  return {host, port};
-}
 
 // Boost's messages are strerror's ("Connection refused"); ours continue a sentence.
 std::string describe(const boost::system::error_code& error) {
@@ -67,7 +42,7 @@ bool run_with_timeout(asio::io_context& io, std::chrono::milliseconds timeout, C
 ManagementClient::ManagementClient(const std::string& host_port,
                                    std::chrono::milliseconds connect_timeout)
     : name_(host_port), socket_(io_) {
-  const HostPort target = parse_host_port(host_port);
+  const HostPort target = parse_host_port(host_port, "--server");
   if (const auto token = client_token_from_environment()) token_ = token->value();
 
   boost::system::error_code error;

@@ -12,6 +12,7 @@
 
 #include "server/dds/dds_options_cli.hpp"
 #include "server/management/access_token.hpp"
+#include "server/management/host_port.hpp"
 #include "server/management/management_server.hpp"
 #include "server/realtime/realtime_options_cli.hpp"
 #include "server/service/job_service.hpp"
@@ -79,15 +80,22 @@ int main(int argc, char** argv) {
     std::cerr << "netmc-server: error: " << e.what() << "\n";
     return 2;
   }
-  const auto colon = listen.rfind(':');
-  int port = -1;
+  std::string listen_address;
+  std::uint16_t port = 0;
   try {
-    if (colon != std::string::npos) port = std::stoi(listen.substr(colon + 1));
-  } catch (const std::exception&) {
-    port = -1;
-  }
-  if (colon == std::string::npos || port < 0 || port > 65535) {
-    std::cerr << "netmc-server: error: --listen: expected HOST:PORT, got '" << listen << "'\n";
+    // A host name (localhost, the lab host's name) binds to the address it resolves to.
+    const auto where = netmc::management::parse_host_port(listen, "--listen", true);
+    port = static_cast<std::uint16_t>(std::stoi(where.port));
+    boost::system::error_code error;
+    boost::asio::io_context resolving;
+    const auto found = boost::asio::ip::tcp::resolver(resolving).resolve(where.host, where.port, error);
+    if (error || found.empty()) {
+      throw std::invalid_argument("--listen: cannot resolve '" + where.host + "'" +
+                                  (error ? ": " + error.message() : std::string()));
+    }
+    listen_address = found.begin()->endpoint().address().to_string();
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "netmc-server: error: " << e.what() << "\n";
     return 2;
   }
   try {
@@ -112,7 +120,7 @@ int main(int argc, char** argv) {
     limits.session.idle_timeout = std::chrono::seconds(idle_timeout_s);
     boost::asio::io_context io;
     netmc::management::ManagementServer server(
-        io, listen.substr(0, colon), static_cast<std::uint16_t>(port),
+        io, listen_address, port,
         {[&jobs, &token, &admin_token](netmc::management::Session& session, const netmc::v1::Request& request) {
           const bool admin = admin_token && admin_token->accepts(request.token());
           if (token && !admin && !token->accepts(request.token())) {
@@ -132,7 +140,7 @@ int main(int argc, char** argv) {
       server.stop();
       io.stop();
     });
-    std::cout << "netmc-server: listening on " << listen.substr(0, colon) << ":" << server.port()
+    std::cout << "netmc-server: listening on " << listen_address << ":" << server.port()
               << ", DDS domain " << dds.domain_id << " (" << context.describe_transport()
               << "), server " << context.identity() << ", time base "
               << netmc::dds::time_base_name(time_base) << ", " << scheduling_outcome.describe() << std::endl;
