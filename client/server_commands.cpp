@@ -89,7 +89,7 @@ std::function<int()> add_run_command(CLI::App& app) {
   auto flags = std::make_shared<Flags>();
   CLI::App* run = app.add_subcommand(
       "run", "Run a study on a netmc-server and its axis nodes (same flags and presets as sim)");
-  run->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT");
+  run->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
   add_study_flags(run, flags->study);
   return [flags]() -> int {
     const StudyPlan plan = plan_from_flags(flags->study);
@@ -116,7 +116,7 @@ std::function<int()> add_nodes_command(CLI::App& app) {
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* nodes = app.add_subcommand("nodes", "List the axis nodes a netmc-server has discovered");
-  nodes->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT");
+  nodes->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
   nodes->add_flag("--json", flags->json,
                   "Print the reply as JSON (protobuf JSON mapping of netmc.v1.NodesReply), for scripts");
   return [flags]() -> int {
@@ -169,7 +169,7 @@ std::function<int()> add_status_command(CLI::App& app) {
   auto flags = std::make_shared<Flags>();
   CLI::App* status = app.add_subcommand("status", "The jobs a netmc-server holds: queued, running and the last 256 ended");
   status->add_option("JOB", flags->job, "Only this job (its id, as `netmc run` prints it)")->check(CLI::PositiveNumber);
-  status->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT");
+  status->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
   status->add_flag("--json", flags->json, "Print the reply as JSON (netmc.v1.StatusReply), for scripts");
   return [flags]() -> int {
     management::ManagementClient client(flags->server, kServerConnectTimeout);
@@ -201,7 +201,7 @@ std::function<int()> add_cancel_command(CLI::App& app) {
       "cancel", "Cancel a job of another connection: needs the server's admin token (NETMC_TOKEN_FILE naming the "
                 "file of netmc-server --admin-token-file); Ctrl-C on `netmc run` cancels its own job");
   cancel->add_option("JOB", flags->job, "The job's id")->required()->check(CLI::PositiveNumber);
-  cancel->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT");
+  cancel->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
   return [flags]() -> int {
     management::ManagementClient client(flags->server, kServerConnectTimeout);
     netmc::v1::Request request;

@@ -6,14 +6,24 @@ if [ "$(id -u)" -ne 0 ]; then
   exit 1
 fi
 export DEBIAN_FRONTEND=noninteractive
+# What building the programs and the .deb needs (--build-only: docker/Dockerfile's build stage).
+build=(build-essential cmake ninja-build pkg-config dpkg-dev file
+  libeigen3-dev
+  libprotobuf-dev protobuf-compiler
+  libfastrtps-dev libfastcdr-dev fastddsgen
+  libboost-dev libboost-system-dev
+  libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev)
+# What the tests and benchmarks use besides: gnuplot for figures, namespaces and nftables for
+# test hosts, rt-tests for the machine's latency, openssl for DDS Security certificates, systemd
+# for checking the units, and podman with compose for the container test.
+tests=(gnuplot-nox
+  iproute2 nftables util-linux fastdds-tools rt-tests openssl systemd
+  podman podman-compose runc debootstrap golang-github-containernetworking-plugin-dnsname dnsmasq-base
+  docker-compose uidmap
+  libgtest-dev libgmock-dev libbenchmark-dev)
 apt-get update
-apt-get install -y --no-install-recommends \
-  build-essential cmake ninja-build pkg-config \
-  libeigen3-dev \
-  libprotobuf-dev protobuf-compiler \
-  libfastrtps-dev libfastcdr-dev fastddsgen \
-  libboost-dev libboost-system-dev \
-  libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev \
-  gnuplot-nox \
-  iproute2 nftables util-linux fastdds-tools rt-tests openssl \
-  libgtest-dev libgmock-dev libbenchmark-dev
+if [ "${1:-}" = "--build-only" ]; then
+  apt-get install -y --no-install-recommends "${build[@]}"
+else
+  apt-get install -y --no-install-recommends "${build[@]}" "${tests[@]}"
+fi

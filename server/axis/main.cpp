@@ -48,15 +48,17 @@ int main(int argc, char** argv) {
   std::string clock = "lockstep";
   config.node = "axis-" + std::to_string(::getpid());
   netmc::dds::DdsOptions dds;
-  app.add_option("--node", config.node, "Unique node name (default axis-PID)");
+  app.add_option("--node", config.node, "Unique node name (default axis-PID)")->envname("NETMC_NODE");
   app.add_option("--axes", axes,
                  "Axes this node hosts, comma-separated names (each unique on the DDS domain; a "
-                 "job's axes default to x,y)");
-  app.add_option("--plant", config.plant, "Plant model: seed001, ballscrew, linmotor, stage004");
+                 "job's axes default to x,y)")
+      ->envname("NETMC_AXES");
+  app.add_option("--plant", config.plant, "Plant model: seed001, ballscrew, linmotor, stage004")->envname("NETMC_PLANT");
   int watchdog_ms = 50;
   app.add_option("--clock", clock,
                  "lockstep (virtual time, deterministic) or realtime (wall clock)")
-      ->check(CLI::IsMember({"lockstep", "realtime"}));
+      ->check(CLI::IsMember({"lockstep", "realtime"}))
+      ->envname("NETMC_CLOCK");
   app.add_option("--watchdog", watchdog_ms,
                  "Realtime: milliseconds without a setpoint before the axis holds (command 0)")
       ->check(CLI::Range(1, 60000));

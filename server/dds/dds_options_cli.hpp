@@ -24,7 +24,9 @@ inline std::vector<std::string> split_list(const std::string& text) {
 
 inline void add_dds_options(CLI::App& app, DdsOptions& options) {
   // Domain ids keep every participant's well-known port below 65536 with 64 participant ids.
-  app.add_option("--domain", options.domain_id, "DDS domain id (0-230)")->check(CLI::Range(0, 230));
+  app.add_option("--domain", options.domain_id, "DDS domain id (0-230)")
+      ->check(CLI::Range(0, 230))
+      ->envname("NETMC_DOMAIN");
   app.add_option_function<std::string>(
          "--transport",
          [&options](const std::string& value) {
@@ -32,7 +34,8 @@ inline void add_dds_options(CLI::App& app, DdsOptions& options) {
          },
          "DDS transport: builtin (shared memory between processes of one host, plus UDP) or udp "
          "(UDPv4 only, needed for honest delay studies and separate hosts)")
-      ->check(CLI::IsMember({"builtin", "udp"}));
+      ->check(CLI::IsMember({"builtin", "udp"}))
+      ->envname("NETMC_TRANSPORT");
   app.add_option_function<std::string>(
          "--interface",
          [&options](const std::string& value) {
@@ -41,13 +44,15 @@ inline void add_dds_options(CLI::App& app, DdsOptions& options) {
          },
          "Network interfaces DDS may use: IPv4 addresses or names, comma-separated (default: "
          "loopback only, 127.0.0.1; 'any' for every interface)")
-      ->type_name("ADDR|NAME[,...]");
+      ->type_name("ADDR|NAME[,...]")
+      ->envname("NETMC_INTERFACE");
   app.add_option_function<std::string>(
          "--discovery-server",
          [&options](const std::string& value) { options.discovery_servers = split_list(value); },
          "Fast DDS Discovery Servers instead of multicast discovery; the i-th runs "
          "`fastdds discovery -i i -l IPV4 -p PORT`")
-      ->type_name("IPV4:PORT[,...]");
+      ->type_name("IPV4:PORT[,...]")
+      ->envname("NETMC_DISCOVERY_SERVER");
   app.add_option("--dds-profile", options.xml_profile_file,
                  "Fast DDS XML profiles file (QoS, transports); FASTRTPS_DEFAULT_PROFILES_FILE is "
                  "honoured too");
@@ -55,7 +60,8 @@ inline void add_dds_options(CLI::App& app, DdsOptions& options) {
                  "Participant profile name in that file (replaces --interface and --transport)");
   app.add_option("--security", options.security_dir,
                  "DDS Security: directory made by scripts/make-lab-pki.sh (authenticated, access-controlled, "
-                 "encrypted); this participant's certificate is NAME.pem, NAME its node or --dds-name");
+                 "encrypted); this participant's certificate is NAME.pem, NAME its node or --dds-name")
+      ->envname("NETMC_SECURITY");
 }
 
 inline void add_time_base_option(CLI::App& app, TimeBase& base) {

@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   netmc::dds::TimeBase time_base = netmc::dds::TimeBase::monotonic;
   netmc::dds::DdsOptions dds;
   dds.name = "netmc-server";
-  app.add_option("--listen", listen, "Management endpoint HOST:PORT (port 0: any free port)");
+  app.add_option("--listen", listen, "Management endpoint HOST:PORT (port 0: any free port)")->envname("NETMC_LISTEN");
   app.add_option("--dds-name", dds.name,
                  "The server's DDS participant name, and its certificate's name under --security (default netmc-server)");
   app.add_option("--axis-timeout", axis_timeout_ms,

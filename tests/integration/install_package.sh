@@ -50,7 +50,7 @@ fi
 "$tmp/consumer/adrc_step"
 echo "find_package(netmc) + netmc::control: built without Fast DDS or protobuf, and ran"
 
-cpack --config "$build/CPackConfig.cmake" -B "$tmp/package" >"$tmp/cpack.log" ||
+cpack --config "$build/CPackConfig.cmake" -B "$tmp/package" >"$tmp/cpack.log" 2>&1 ||
   { cat "$tmp/cpack.log"; exit 1; }
 deb=$(ls "$tmp/package"/netmc_"$version"_*.deb)
 depends=$(dpkg-deb -f "$deb" Depends)
