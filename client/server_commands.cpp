@@ -26,6 +26,16 @@ netmc::v1::Response expect_response(management::ManagementClient& client,
   return *response;
 }
 
+// One request (request id 1, filled in by `fill`) on a connection of its own, and its answer.
+netmc::v1::Response ask_server(const std::string& server, const std::function<void(netmc::v1::Request&)>& fill) {
+  management::ManagementClient client(server, kServerConnectTimeout);
+  netmc::v1::Request request;
+  request.set_request_id(1);
+  fill(request);
+  client.send(request);
+  return expect_response(client, std::chrono::seconds(10), server);
+}
+
 }  // namespace
 
 RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::v1::JobSpec& spec,
@@ -120,12 +130,7 @@ std::function<int()> add_nodes_command(CLI::App& app) {
   nodes->add_flag("--json", flags->json,
                   "Print the reply as JSON (protobuf JSON mapping of netmc.v1.NodesReply), for scripts");
   return [flags]() -> int {
-    management::ManagementClient client(flags->server, kServerConnectTimeout);
-    netmc::v1::Request request;
-    request.set_request_id(1);
-    request.mutable_nodes();
-    client.send(request);
-    const auto response = expect_response(client, std::chrono::seconds(10), flags->server);
+    const auto response = ask_server(flags->server, [](netmc::v1::Request& request) { request.mutable_nodes(); });
     if (flags->json) {
       fmt::print("{}\n", job::to_json(response.nodes()));
       return 0;
@@ -172,12 +177,8 @@ std::function<int()> add_status_command(CLI::App& app) {
   status->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
   status->add_flag("--json", flags->json, "Print the reply as JSON (netmc.v1.StatusReply), for scripts");
   return [flags]() -> int {
-    management::ManagementClient client(flags->server, kServerConnectTimeout);
-    netmc::v1::Request request;
-    request.set_request_id(1);
-    request.mutable_status()->set_job_id(flags->job);
-    client.send(request);
-    const auto response = expect_response(client, std::chrono::seconds(10), flags->server);
+    const auto response = ask_server(
+        flags->server, [&](netmc::v1::Request& request) { request.mutable_status()->set_job_id(flags->job); });
     if (flags->job != 0 && response.status().jobs_size() == 0) {
       throw std::runtime_error("server " + flags->server + ": no job " + std::to_string(flags->job) +
                                " (never submitted, or ended more than 256 jobs ago)");
@@ -203,13 +204,9 @@ std::function<int()> add_cancel_command(CLI::App& app) {
   cancel->add_option("JOB", flags->job, "The job's id")->required()->check(CLI::PositiveNumber);
   cancel->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
   return [flags]() -> int {
-    management::ManagementClient client(flags->server, kServerConnectTimeout);
-    netmc::v1::Request request;
-    request.set_request_id(1);
-    request.mutable_cancel()->set_job_id(flags->job);
-    client.send(request);
-    const auto response = expect_response(client, std::chrono::seconds(10), flags->server);
-    print_jobs(response.status());
+    print_jobs(ask_server(flags->server, [&](netmc::v1::Request& request) {
+                 request.mutable_cancel()->set_job_id(flags->job);
+               }).status());
     return 0;
   };
 }

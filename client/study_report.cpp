@@ -109,7 +109,7 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
   if (plan.steady_metrics) {
     const auto& first = outcomes.front().result;
     const bool sweep = delays_differ(outcomes);
-    fmt::print(out, "{}\ntrajectory {} | plant {} | delay {} | h = {} ms | seed {}\n\n", plan.title,
+    fmt::print(out, "{}\ntrajectory {} | plant {} | delay {} | h = {:.6g} ms | seed {}\n\n", plan.title,
                first.trajectory(), first.plant(), sweep ? "by column" : first.delay(),
                first.sample_period_s() * 1e3, first.seed());
     if (sweep) {
@@ -121,7 +121,7 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
   }
   const auto& first = outcomes.front().result;
   fmt::print(out, "{}\n", plan.title);
-  fmt::print(out, "trajectory {} | plant {} | delay {} | h = {} ms | {} iterations | seed {}\n\n",
+  fmt::print(out, "trajectory {} | plant {} | delay {} | h = {:.6g} ms | {} iterations | seed {}\n\n",
              first.trajectory(), first.plant(), first.delay(), first.sample_period_s() * 1e3,
              first.iterations_size(), first.seed());
   const bool with_paper = !plan.paper.empty();
