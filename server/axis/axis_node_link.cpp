@@ -1,7 +1,8 @@
 #include "server/axis/axis_node_link.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
-#include <iostream>
 
 #include "dds_typesPubSubTypes.h"
 #include "idl/job.pb.h"
@@ -106,9 +107,9 @@ bool AxisNodeLink::authentic(const eprosima::fastrtps::rtps::GuidPrefix_t& sende
   const std::string forger = dds::prefix_text(sender);
   std::lock_guard lock(mutex_);
   if (forgers_logged_.size() < kMaxForgersLogged && forgers_logged_.insert(forger + " " + what).second) {
-    std::cerr << "netmc-axis " << config_.node << ": dropped a forged " << what << " for axis " << axis.substr(0, 64)
-              << ": it names server " << server.substr(0, 32) << " but participant " << forger
-              << " sent it (its further forgeries of the kind are counted, not logged)" << std::endl;
+    spdlog::warn("dropped a forged {} for axis {}: it names server {} but participant {} sent it (its further "
+                 "forgeries of the kind are counted, not logged)",
+                 what, axis.substr(0, 64), server.substr(0, 32), forger);
   }
   return false;
 }
@@ -186,8 +187,7 @@ void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::stri
 
 void AxisNodeLink::refuse(const netmc::dds::JobControl& control, netmc::dds::AxisEventKind kind,
                           const std::string& why) {
-  std::cerr << "netmc-axis " << config_.node << ": job " << control.job_id() << " of server "
-            << control.server() << " refused: " << why << std::endl;
+  spdlog::warn("job {} of server {} refused: {}", control.job_id(), control.server(), why);
   netmc::dds::AxisEvent event;
   event.axis(control.axis());
   event.server(control.server());
@@ -238,8 +238,8 @@ void AxisNodeLink::report_fault(const std::string& axis, JobAxis& job_axis, cons
     std::lock_guard lock(mutex_);
     faults_.emplace(axis, reason);
   }
-  std::cerr << "netmc-axis " << config_.node << ": axis " << axis << " FAULT (job " << job_axis.job_id << "): " << reason
-            << "; command held at zero until reset on this host (SIGUSR1)" << std::endl;
+  spdlog::error("axis {} FAULT (job {}): {}; command held at zero until reset on this host (SIGUSR1)", axis,
+                job_axis.job_id, reason);
   netmc::dds::AxisEvent event;
   event.axis(axis);
   event.server(server);
@@ -257,7 +257,7 @@ void AxisNodeLink::reset_faults() {
     if (faults_.empty()) return;
     faults_.clear();
   }
-  std::cerr << "netmc-axis " << config_.node << ": faults reset by the operator" << std::endl;
+  spdlog::info("faults reset by the operator");
   publish_status(netmc::dds::NODE_IDLE, "ready (faults reset)");
 }
 

@@ -2,6 +2,7 @@
 // the setpoints of the netmc-server that holds it and publishes feedback over DDS.
 
 #include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
 
 #include <atomic>
 #include <csignal>
@@ -12,6 +13,7 @@
 #include "server/axis/realtime_axis_node.hpp"
 #include "server/dds/dds_options_cli.hpp"
 #include "server/job/job_builder.hpp"
+#include "server/log/process_log.hpp"
 #include "server/realtime/realtime_options_cli.hpp"
 
 namespace {
@@ -30,10 +32,10 @@ int serve(Node& node) {
   try {
     node.link().claim(kClaimListen);
   } catch (const netmc::axis::NodeRefused& refused) {
-    std::cerr << "netmc-axis: refused: " << refused.what() << "\n";
+    spdlog::error("refused: {}", refused.what());
     return 3;
   }
-  std::cout << "netmc-axis " << node.link().config().node << ": serving" << std::endl;
+  spdlog::info("serving");
   node.serve(g_stop);
   return 0;
 }
@@ -102,22 +104,22 @@ int main(int argc, char** argv) {
     }
     config.limits.validate();
     netmc::job::check_name(config.node, "--node");
+    netmc::log::init("netmc-axis " + config.node);
     config.clock = clock;
     dds.name = config.node;
     // Before the participant: its threads inherit the scheduling.
     const auto scheduling_outcome = netmc::realtime::apply_process_scheduling(scheduling);
     for (const auto& fallback : scheduling_outcome.fallbacks) {
-      std::cerr << "netmc-axis: warning: " << fallback << "; running without it" << std::endl;
+      spdlog::warn("{}; running without it", fallback);
     }
     netmc::dds::DdsContext context(dds);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     std::signal(SIGUSR1, on_reset);
-    std::cout << "netmc-axis " << config.node << ": axes " << axes << ", plant " << config.plant
-              << ", limits " << config.limits.describe()
-              << ", clock " << clock << " (" << netmc::dds::time_base_name(config.time_base)
-              << "), DDS domain " << dds.domain_id << " (" << context.describe_transport()
-              << "), participant " << context.identity() << ", " << scheduling_outcome.describe() << std::endl;
+    spdlog::info("netmc {}, axes {}, plant {}, limits {}, clock {} ({}), DDS domain {} ({}), participant {}, {}",
+                 NETMC_VERSION, axes, config.plant, config.limits.describe(), clock,
+                 netmc::dds::time_base_name(config.time_base), dds.domain_id, context.describe_transport(),
+                 context.identity(), scheduling_outcome.describe());
     if (clock == "realtime") {
       netmc::axis::RealtimeAxisNode node(context, config, std::chrono::milliseconds(watchdog_ms));
       return serve(node);

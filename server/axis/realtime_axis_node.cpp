@@ -1,10 +1,9 @@
 #include "server/axis/realtime_axis_node.hpp"
 
-#include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
-#include <iostream>
 
 #include "server/realtime/realtime_scheduling.hpp"
 
@@ -242,16 +241,14 @@ void RealtimeAxisNode::end_iteration(const std::string& axis_name, OwnedAxis& ax
   link_.publish_event(event);
   // The node's own view of the loop's timing, for the operator and bench/realtime_sweep.sh.
   const double us = 1e6;
-  std::cout << fmt::format(
-                   "netmc-axis {}: axis {} job {} iteration {}: {} samples, sample wake-up late p50 {:.0f} us "
+  spdlog::info("axis {} job {} iteration {}: {} samples, sample wake-up late p50 {:.0f} us "
                    "p99 {:.0f} us; round trip feedback->setpoint p50 {:.0f} us p99 {:.0f} us max {:.0f} us ({} "
                    "setpoints)",
-                   link_.config().node, axis_name, axis.job_id, axis.iteration, axis.samples,
+                   axis_name, axis.job_id, axis.iteration, axis.samples,
                    percentile(axis.wake_late_s, 0.50) * us, percentile(axis.wake_late_s, 0.99) * us,
                    percentile(axis.round_trips_s, 0.50) * us, percentile(axis.round_trips_s, 0.99) * us,
                    axis.round_trips_s.empty() ? 0.0 : *std::max_element(axis.round_trips_s.begin(), axis.round_trips_s.end()) * us,
-                   axis.round_trips_s.size())
-            << std::endl;
+                   axis.round_trips_s.size());
 }
 
 }  // namespace netmc::axis

@@ -1,7 +1,10 @@
 #include "server/service/job_service.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
-#include <iostream>
 #include <optional>
 
 #include "dds_typesPubSubTypes.h"
@@ -194,6 +197,8 @@ void JobService::admit(const Submission& submission) {
   response.mutable_accepted()->set_job_id(job->id);
   session->send(response);
   queue_.push_back(job);
+  spdlog::info("job {} accepted: {}, {} iterations on axes {}", job->id, job->status.label(), spec.iterations(),
+               fmt::format("{}", fmt::join(job->axes, ",")));
   wake_.notify_all();
 }
 
@@ -208,7 +213,7 @@ void JobService::tend_jobs() {
       ++it;
       continue;
     }
-    std::cout << "netmc-server: job " << job.id << " dropped from the queue: its client disconnected" << std::endl;
+    spdlog::info("job {} dropped from the queue: its client disconnected", job.id);
     job.status.set_state("cancelled");
     job.status.set_error("its client disconnected");
     ended_.push_back(job.id);
@@ -250,8 +255,8 @@ void JobService::schedule() {
       job->status.clear_waiting_for();
       std::string axes;
       for (const auto& axis : job->axes) axes += (axes.empty() ? "" : ",") + axis;
-      std::cout << "netmc-server: job " << job->id << " running on axes " << axes << " (" << running_.size() + 1
-                << " running, " << queue_.size() << " queued)" << std::endl;
+      spdlog::info("job {} running on axes {} ({} running, {} queued)", job->id, axes, running_.size() + 1,
+                   queue_.size());
       running_.emplace(job->id, std::thread([this, job] {
         run(*job);
         finish(job);
@@ -409,9 +414,9 @@ void JobService::run(Job& job) {
       std::uint64_t job_id;
       ~ReportForgeries() {
         if (channels.forged_samples == 0) return;
-        std::cerr << "netmc-server: job " << job_id << ": dropped " << channels.forged_samples
-                  << " forged feedback or axis events (about its axes, from participants that do not host them)"
-                  << std::endl;
+        spdlog::warn("job {}: dropped {} forged feedback or axis events (about its axes, from participants that do "
+                     "not host them)",
+                     job_id, channels.forged_samples);
       }
     } report_forgeries{channels, job.id};
     const auto on_iteration = [&](const sim::IterationRecord& record) {
@@ -427,6 +432,11 @@ void JobService::run(Job& job) {
       iteration.set_total_iterations(job.spec.iterations());
       *iteration.mutable_metrics() = metrics;
       reply(job, update);
+      spdlog::info("job {} iteration {}/{}: e_max {:.4f} mm, e_sum {:.3f} mm{}", job.id, record.metrics.iteration,
+                   job.spec.iterations(), record.metrics.e_max_m * 1e3, record.metrics.e_sum_m * 1e3,
+                   record.metrics.deadline_misses > 0
+                       ? fmt::format(", {} deadline misses", record.metrics.deadline_misses)
+                       : std::string());
     };
     if (realtime) {
       // Before the first iteration every node's clock must have been measured a few times.
@@ -466,8 +476,8 @@ void JobService::run(Job& job) {
     job.status.set_error(done.error());
   }
   done.set_state(state);
-  std::cout << "netmc-server: job " << job.id << " " << state << (done.error().empty() ? "" : ": " + done.error())
-            << std::endl;
+  const auto level = state == "failed" ? spdlog::level::err : spdlog::level::info;
+  spdlog::log(level, "job {} {}{}", job.id, state, done.error().empty() ? "" : ": " + done.error());
   reply(job, finished);
 }
 

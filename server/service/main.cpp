@@ -3,6 +3,7 @@
 // (Boost.Asio TCP, length-prefixed protobuf) for `netmc run` and `netmc nodes`.
 
 #include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
 #include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange unincluded
 
 #include <boost/asio.hpp>
@@ -11,6 +12,7 @@
 #include <optional>
 
 #include "server/dds/dds_options_cli.hpp"
+#include "server/log/process_log.hpp"
 #include "server/management/access_token.hpp"
 #include "server/management/host_port.hpp"
 #include "server/management/management_server.hpp"
@@ -98,6 +100,7 @@ int main(int argc, char** argv) {
     std::cerr << "netmc-server: error: " << e.what() << "\n";
     return 2;
   }
+  netmc::log::init("netmc-server");
   try {
     std::optional<netmc::management::AccessToken> token;
     if (!token_file.empty()) token = netmc::management::AccessToken::from_file(token_file);
@@ -106,7 +109,7 @@ int main(int argc, char** argv) {
     // Before the participant: its threads, and every job thread, inherit the scheduling.
     const auto scheduling_outcome = netmc::realtime::apply_process_scheduling(scheduling);
     for (const auto& fallback : scheduling_outcome.fallbacks) {
-      std::cerr << "netmc-server: warning: " << fallback << "; running without it" << std::endl;
+      spdlog::warn("{}; running without it", fallback);
     }
     netmc::dds::DdsContext context(dds);
     netmc::service::NodeDirectory nodes(context);
@@ -140,17 +143,16 @@ int main(int argc, char** argv) {
       server.stop();
       io.stop();
     });
-    std::cout << "netmc-server: listening on " << listen_address << ":" << server.port()
-              << ", DDS domain " << dds.domain_id << " (" << context.describe_transport()
-              << "), server " << context.identity() << ", time base "
-              << netmc::dds::time_base_name(time_base) << ", " << scheduling_outcome.describe() << std::endl;
+    spdlog::info("netmc {}, listening on {}:{}, DDS domain {} ({}), server {}, time base {}, {}", NETMC_VERSION,
+                 listen_address, server.port(), dds.domain_id, context.describe_transport(), context.identity(),
+                 netmc::dds::time_base_name(time_base), scheduling_outcome.describe());
     io.run();
     return 0;
   } catch (const std::invalid_argument& e) {
-    std::cerr << "netmc-server: error: " << e.what() << "\n";
+    spdlog::error("{}", e.what());
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "netmc-server: error: " << e.what() << "\n";
+    spdlog::critical("{}", e.what());
     return 1;
   }
 }

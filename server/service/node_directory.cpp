@@ -1,6 +1,7 @@
 #include "server/service/node_directory.hpp"
 
-#include <iostream>
+#include <spdlog/spdlog.h>
+
 
 #include "dds_typesPubSubTypes.h"
 #include "server/dds/topics.hpp"
@@ -37,11 +38,13 @@ void NodeDirectory::run() {
       const bool same = it != nodes_.end() && it->second.status.participant() == status->participant();
       const bool name_taken = it != nodes_.end() && !same && now - it->second.last_seen <= expiry_;
       if (status->health() == netmc::dds::NODE_REFUSED) {
-        std::cerr << "netmc-server: node " << name << " (" << status->participant() << ") "
-                  << status->detail() << std::endl;
+        spdlog::warn("node {} ({}) {}", name, status->participant(), status->detail());
       }
       if (status->health() == netmc::dds::NODE_LEAVING || status->health() == netmc::dds::NODE_REFUSED) {
-        if (same) nodes_.erase(it);
+        if (same) {
+          if (status->health() == netmc::dds::NODE_LEAVING) spdlog::info("node {} left", name);
+          nodes_.erase(it);
+        }
       } else if (same) {
         it->second.status = *status;
         it->second.last_seen = now;
@@ -51,6 +54,10 @@ void NodeDirectory::run() {
         log_spoof(name, "participant " + status->participant().substr(0, 32) + " claims the name of live participant " +
                             it->second.status.participant());
       } else {
+        std::string axes;
+        for (const auto& axis : status->axes()) axes += (axes.empty() ? "" : ",") + axis;
+        spdlog::info("node {} joined: axes {}, plant {}, {} clock, participant {}", name, axes, status->plant(),
+                     status->clock(), status->participant());
         nodes_[name] = NodeRecord{*status, now, now, ""};  // new, or restarted (a new participant)
       }
     }
@@ -63,12 +70,18 @@ void NodeDirectory::log_spoof(const std::string& node, const std::string& what) 
   constexpr std::size_t kMaxSpoofsLogged = 16;  // a flood of them cannot fill the log
   const std::string line = "ignored a status of node " + node.substr(0, 64) + ": " + what;
   if (spoofs_logged_.size() >= kMaxSpoofsLogged || !spoofs_logged_.insert(line).second) return;
-  std::cerr << "netmc-server: " << line << std::endl;
+  spdlog::warn("{}", line);
 }
 
 void NodeDirectory::expire(std::chrono::steady_clock::time_point now) {
   for (auto it = nodes_.begin(); it != nodes_.end();) {
-    it = now - it->second.last_seen > expiry_ ? nodes_.erase(it) : std::next(it);
+    if (now - it->second.last_seen <= expiry_) {
+      ++it;
+      continue;
+    }
+    spdlog::warn("node {} lost: silent for {} ms", it->first,
+                 std::chrono::duration_cast<std::chrono::milliseconds>(now - it->second.last_seen).count());
+    it = nodes_.erase(it);
   }
 }
 
@@ -89,7 +102,7 @@ void NodeDirectory::judge() {
       }
     }
     if (why != record.refused && !why.empty()) {
-      std::cerr << "netmc-server: node " << name << " " << why << std::endl;
+      spdlog::warn("node {} {}", name, why);
     }
     record.refused = why;
   }

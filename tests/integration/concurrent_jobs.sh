@@ -34,12 +34,12 @@ run_c=$!
 wait "$run_a"
 wait "$run_b"
 wait "$run_c"
-grep -E '^netmc-server: job [0-9]+ ' "$tmp/server.log"
+grep -E 'netmc-server: job [0-9]+ ' "$tmp/server.log"
 
 # Server log order: the two first jobs both running before either is done; the third (the axes
 # of the first m1 job) starts only after that job is done.
-id_on() { grep -E "^netmc-server: job [0-9]+ running on axes $1 " "$tmp/server.log" | sed -n "$2s/^netmc-server: job \([0-9]*\) .*/\1/p"; }
-line() { grep -n -m1 -E "^netmc-server: job $1 $2" "$tmp/server.log" | cut -d: -f1; }
+id_on() { grep -E "netmc-server: job [0-9]+ running on axes $1 " "$tmp/server.log" | sed -n "$2s/.*netmc-server: job \([0-9]*\) .*/\1/p"; }
+line() { grep -n -m1 -E "netmc-server: job $1 $2" "$tmp/server.log" | cut -d: -f1; }
 first=$(id_on m1.x,m1.y 1)
 other=$(id_on m2.x,m2.y 1)
 third=$(id_on m1.x,m1.y 2)

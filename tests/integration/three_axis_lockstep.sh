@@ -24,4 +24,4 @@ cat "$tmp/dds.txt"
 axes=$(awk '/"tracking_rms_m": \[/ {inside = 1; next} inside && /\]/ {print n; exit} inside {n++}' "$tmp/sim.json")
 [ "$axes" = 3 ] || { echo "FAIL: expected metrics of 3 axes, got $axes"; exit 1; }
 same_json "$tmp/sim.json" "$tmp/dds.json" "three axes in lockstep over DDS ($wall s)"
-grep -E "^netmc-server: job [0-9]+ running on axes x,y,z " "$tmp/server.log" | head -1
+grep -E "netmc-server: job [0-9]+ running on axes x,y,z " "$tmp/server.log" | head -1
