@@ -50,7 +50,7 @@ void print_steady_table(std::ostream& out, const StudyPlan& plan,
       fmt::print(out, "{:<{}} unstable at t = {:.3f} s\n", outcome.result.label(), width, m.diverged_at_s());
       continue;
     }
-    if (m.e_rms_steady_m() == 0.0 && m.e_max_steady_m() == 0.0) {  // no sample in the window
+    if (!m.has_e_rms_steady_m()) {  // no sample in the window
       fmt::print(out, "{:<{}} no steady metrics: the run ends before its evaluation window (t >= {:g} s)\n",
                  outcome.result.label(), width, outcome.result.evaluation_start_s());
       continue;
@@ -92,8 +92,9 @@ void print_steady_sweep(std::ostream& out, const std::vector<RunOutcome>& outcom
       std::string cell = "-";
       if (found != outcomes.end()) {
         const auto& m = last(*found);
-        cell = m.diverged() ? fmt::format("unstable at {:.2f} s", m.diverged_at_s())
-                            : fmt::format("{:.2f} / {:.2f}", m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6);
+        cell = m.diverged()                ? fmt::format("unstable at {:.2f} s", m.diverged_at_s())
+               : !m.has_e_rms_steady_m()   ? std::string("no steady window")
+                                           : fmt::format("{:.2f} / {:.2f}", m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6);
       }
       fmt::print(out, " {:>24}", cell);
     }

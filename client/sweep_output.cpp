@@ -46,6 +46,9 @@ std::string format_value(const google::protobuf::Message& message, const FieldDe
   const auto* reflection = message.GetReflection();
   const bool repeated = field->is_repeated();
   if (repeated && index >= reflection->FieldSize(message, field)) return "";
+  // A metric the iteration does not have (the steady ones without an evaluation window) is an
+  // empty cell, not 0.
+  if (!repeated && field->has_presence() && !reflection->HasField(message, field)) return "";
   switch (field->cpp_type()) {
     case FieldDescriptor::CPPTYPE_DOUBLE:
       // Shortest text that reads back as the same double.

@@ -537,8 +537,10 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   out.set_e_max_m(m.e_max_m);
   out.set_e_rms_m(m.e_rms_m);
   out.set_e_sum_m(m.e_sum_m);
-  out.set_e_rms_steady_m(m.e_rms_steady_m);
-  out.set_e_max_steady_m(m.e_max_steady_m);
+  if (m.steady_samples > 0) {
+    out.set_e_rms_steady_m(m.e_rms_steady_m);
+    out.set_e_max_steady_m(m.e_max_steady_m);
+  }
   out.set_tau_mean_s(m.tau_mean_s);
   out.set_tau_p50_s(m.tau_p50_s);
   out.set_tau_p99_s(m.tau_p99_s);
@@ -555,7 +557,9 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   for (const double v : m.tracking_rms_m) out.add_tracking_rms_m(v);
   for (const double v : m.tracking_max_m) out.add_tracking_max_m(v);
   for (const double v : m.command_rms) out.add_command_rms(v);
-  for (const double v : m.command_rms_steady) out.add_command_rms_steady(v);
+  if (m.steady_samples > 0) {
+    for (const double v : m.command_rms_steady) out.add_command_rms_steady(v);
+  }
   out.set_deadline_misses(static_cast<std::uint32_t>(m.deadline_misses));
   out.set_lost_feedback(static_cast<std::uint32_t>(m.lost_feedback));
   out.set_late_feedback(static_cast<std::uint32_t>(m.late_feedback));

@@ -197,6 +197,7 @@ IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
   if (job_.record_traces) record_.trace.resize(samples_);
   const auto n = static_cast<double>(std::max<std::size_t>(samples_, 1));
   m.e_rms_m = std::sqrt(squared_error_sum_ / n);
+  m.steady_samples = steady_samples_;
   if (steady_samples_ > 0) m.e_rms_steady_m = std::sqrt(steady_squared_sum_ / static_cast<double>(steady_samples_));
   for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
     m.tracking_rms_m[axis] = std::sqrt(tracking_squares_[axis] / n);

@@ -1,6 +1,7 @@
 #pragma once
 // Per-iteration results of a contouring job (architecture.md, "Metrics"), SI units.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -15,6 +16,7 @@ struct IterationMetrics {
   double e_sum_m = 0.0;                  // sum of |eps(k)| (paper 001's cumulative error)
   double e_rms_steady_m = 0.0;           // over the evaluation window (after the start-up)
   double e_max_steady_m = 0.0;
+  std::size_t steady_samples = 0;        // samples in the evaluation window; 0: no steady metrics
   // Per axis, in the group's order.
   std::vector<double> tracking_rms_m;
   std::vector<double> tracking_max_m;

@@ -174,6 +174,24 @@ TEST(JobBuilder, JsonOutputUsesProtoFieldNames) {
   EXPECT_NE(json.find("\"iteration\": 2"), std::string::npos) << json;
 }
 
+TEST(JobBuilder, SteadyMetricsAreAbsentWithoutAnEvaluationWindowNeverZero) {
+  sim::IterationMetrics m;
+  m.command_rms_steady = {0.0, 0.0};
+  const auto without = to_proto(m);  // no sample in the window
+  EXPECT_FALSE(without.has_e_rms_steady_m());
+  EXPECT_FALSE(without.has_e_max_steady_m());
+  EXPECT_EQ(without.command_rms_steady_size(), 0);
+  EXPECT_EQ(to_json(without).find("steady_m"), std::string::npos);
+  m.steady_samples = 400;
+  m.e_rms_steady_m = 0.0;  // a perfect steady state is a measured 0, and it is shown
+  m.e_max_steady_m = 2e-6;
+  const auto with = to_proto(m);
+  EXPECT_TRUE(with.has_e_rms_steady_m());
+  EXPECT_EQ(with.e_max_steady_m(), 2e-6);
+  EXPECT_EQ(with.command_rms_steady_size(), 2);
+  EXPECT_NE(to_json(with).find("\"e_rms_steady_m\": 0"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace netmc::job
 
