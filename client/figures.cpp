@@ -33,6 +33,10 @@ std::string data_path(const std::string& data_dir, const std::string& name) {
   return (fs::absolute(data_dir) / name).string();
 }
 
+// How a script names a data file: relative to the figure directory (render_figures runs gnuplot
+// there), so the kept script redraws in place wherever the directory is moved.
+std::string in_script(const std::string& path) { return "data/" + fs::path(path).filename().string(); }
+
 constexpr const char* kStyle =
     "set style line 1 lc rgb '#1f77b4' lw 2 pt 7 ps 0.8\n"
     "set style line 2 lc rgb '#d62728' lw 2 pt 5 ps 0.8\n"
@@ -130,14 +134,14 @@ Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
     }
     const std::string path = data_path(data_dir, fmt::format("contour-{}.dat", i + 1));
     write_file_atomically(path, dat);
-    plot_full += fmt::format("{} using 3:4 with lines ls {} title '{}', ", gnuplot_quote(path),
+    plot_full += fmt::format("{} using 3:4 with lines ls {} title '{}', ", gnuplot_quote(in_script(path)),
                              line_style(i), run_title(i));
-    plot_zoom += fmt::format("{} using 7:8 with lines ls {} title '{}', ", gnuplot_quote(path),
+    plot_zoom += fmt::format("{} using 7:8 with lines ls {} title '{}', ", gnuplot_quote(in_script(path)),
                              line_style(i), run_title(i));
     if (i + 1 == outputs.traces.size()) {  // desired last, on top of the runs that hide it
       const std::string first_path = data_path(data_dir, "contour-1.dat");
-      plot_full += gnuplot_quote(first_path) + " using 1:2 with lines lc rgb 'black' dt 2 lw 1.5 title 'desired'";
-      plot_zoom += gnuplot_quote(first_path) + " using 5:6 with lines lc rgb 'black' dt 2 lw 1.5 title 'desired'";
+      plot_full += gnuplot_quote(in_script(first_path)) + " using 1:2 with lines lc rgb 'black' dt 2 lw 1.5 title 'desired'";
+      plot_zoom += gnuplot_quote(in_script(first_path)) + " using 5:6 with lines lc rgb 'black' dt 2 lw 1.5 title 'desired'";
     }
   }
   const double half_mm = half_um * 1e-3;
@@ -207,7 +211,7 @@ Figure contour_error_figure(const SimOutputs& outputs, const std::string& data_d
     write_file_atomically(path, dat);
     body += i + 1 == n ? "set xlabel 'time [s]'\nset format x '%g'\n" : "unset xlabel\nset format x ''\n";
     body += fmt::format("plot {} using 1:2 with lines ls {} title '{}  (max |e_c| {:.2f} {}m)'\n",
-                        gnuplot_quote(path), line_style(i), gnuplot_text(outputs.traces[i].label), max_um,
+                        gnuplot_quote(in_script(path)), line_style(i), gnuplot_text(outputs.traces[i].label), max_um,
                         "\xC2\xB5");
   }
   figure.body = body;
@@ -224,7 +228,7 @@ Figure e_sum_figure(const SimOutputs& outputs, const std::string& data_dir) {
     }
     const std::string path = data_path(data_dir, fmt::format("e_sum-{}.dat", i + 1));
     write_file_atomically(path, dat);
-    plot += fmt::format("{} using 1:2 with linespoints ls {} title '{}'{}", gnuplot_quote(path),
+    plot += fmt::format("{} using 1:2 with linespoints ls {} title '{}'{}", gnuplot_quote(in_script(path)),
                         line_style(static_cast<std::size_t>(i)), gnuplot_text(run.label()),
                         i + 1 < outputs.study.runs_size() ? ", " : "");
   }
@@ -282,7 +286,7 @@ Figure tau_figure(const SimOutputs& outputs, const std::string& data_dir) {
       "NaN with lines lc rgb '#ff7f0e' lw 2 dt 3 title 'p99 {p99:.3f} ms'\n",
       fmt::arg("tau", "\xCF\x84"), fmt::arg("run", gnuplot_text(trace.label)), fmt::arg("n", taus_ms.size()),
       fmt::arg("w", width), fmt::arg("mean", mean),
-      fmt::arg("xrange", hi > lo ? std::string() : fmt::format("set xrange [{:.6f}:{:.6f}]\n", lo - 10 * width, lo + 10 * width)), fmt::arg("p99", p99), fmt::arg("path", gnuplot_quote(path)));
+      fmt::arg("xrange", hi > lo ? std::string() : fmt::format("set xrange [{:.6f}:{:.6f}]\n", lo - 10 * width, lo + 10 * width)), fmt::arg("p99", p99), fmt::arg("path", gnuplot_quote(in_script(path))));
   return figure;
 }
 
@@ -358,6 +362,21 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
   }
   std::set<std::string> bases;
   for (const auto& [key, r] : last_row) bases.insert(sweep.text(r, base));
+  // The delays' lower bound, stated on the axis: the same for every configuration of a delay
+  // sweep ("uniform 300 us..800 us" -> "300 us"), else left out.
+  std::set<std::string> lower_bounds;
+  const std::size_t delay_text = sweep.column("delay");
+  for (const auto& [key, r] : last_row) {
+    const std::string text = sweep.text(r, delay_text);
+    const auto from = text.rfind("uniform "), to = text.rfind("..");
+    lower_bounds.insert(from != std::string::npos && to != std::string::npos && to > from + 8
+                            ? text.substr(from + 8, to - from - 8)
+                            : std::string());
+  }
+  const std::string lower_bound =
+      lower_bounds.size() == 1 && !lower_bounds.begin()->empty()
+          ? " (each delay uniform from " + gnuplot_text(*lower_bounds.begin()) + " up to it)"
+          : std::string();
 
   std::vector<Figure> figures;
   for (const auto& metric : metrics) {
@@ -420,7 +439,7 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
       elements.push_back(fmt::format(
           "{p} using 1:3:4 with filledcurves ls {ls} fs transparent solid 0.18 noborder notitle, "
           "{p} using 1:2 with linespoints ls {ls} title '{t}'",
-          fmt::arg("p", gnuplot_quote(path)), fmt::arg("ls", line_style(s)), fmt::arg("t", title)));
+          fmt::arg("p", gnuplot_quote(in_script(path))), fmt::arg("ls", line_style(s)), fmt::arg("t", title)));
     }
     if (!any_point) {
       throw std::invalid_argument("sweep CSV: no configuration has both a delay upper bound (delay_max_s) and a stable last iteration "
@@ -438,13 +457,14 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
     const std::string label = metric_label(metric) + (unit.empty() ? "" : " [" + unit + "]");
     figure.body = std::string(kStyle) + fmt::format(
         "set title '{label} of the last iteration vs loop-delay upper bound (mean over seeds, band: min-max)' font ',12'\n"
-        "set xlabel 'loop delay upper bound [ms]'\nset ylabel '{label}'\n"
+        "set xlabel 'loop delay upper bound [ms]{lower}'\nset ylabel '{label}'\n"
         "{log}set key outside right top vertical box samplen 2 font ',10'\n"
         "set datafile missing 'NaN'\n{room}{plot}\n",
         fmt::arg("label", label), // Log scale only when the values span more than about a decade and a half: fewer decades
         // would leave one or two labelled ticks.
         fmt::arg("log", positive && metric.starts_with("e_") && highest > 30.0 * lowest ? "set logscale y\nset format y '%g'\n" : ""),
-        fmt::arg("room", markers.empty() ? "" : "set offsets 0, 0, graph 0.15, 0\n"), fmt::arg("plot", plot));
+        fmt::arg("room", markers.empty() ? "" : "set offsets 0, 0, graph 0.15, 0\n"), fmt::arg("plot", plot),
+        fmt::arg("lower", lower_bound));
     figures.push_back(std::move(figure));
   }
   return figures;

@@ -121,47 +121,62 @@ void require_gnuplot() {
 
 std::vector<std::string> render_figures(const std::vector<Figure>& figures,
                                         const std::string& out_dir, FigureFormats formats,
-                                        std::chrono::milliseconds timeout) {
+                                        const std::string& set_name, std::chrono::milliseconds timeout) {
   require_gnuplot();
   const auto gnuplot = find_gnuplot();
-  // Absolute paths, so the kept script redraws the figures from any directory.
   const std::filesystem::path out = std::filesystem::absolute(out_dir);
   const std::filesystem::path data = out / "data";
   std::error_code error;
   std::filesystem::create_directories(data, error);
   if (error) throw std::runtime_error(out_dir + ": cannot create the figure directory");
 
-  std::string script = "# netmc figures; edit and redraw with: gnuplot figures.gp\n";
+  // Two scripts with the same figures: the kept one (data/SET.gp) writes the final names
+  // relative to the figure directory, to edit and redraw in place; the one run now starts with a
+  // cd there and writes fresh temporary files, renamed over the targets once gnuplot succeeded.
+  const std::string set = set_name.empty() ? "figures" : set_name;
+  std::string kept = "# netmc figures (" + set + "): edit, then redraw them in place with\n#   cd " + out.string() +
+                     " && gnuplot data/" + set + ".gp\n";
+  std::string run = "cd " + gnuplot_quote(out.string()) + "\n";
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> outputs;  // partial -> final
   for (const auto& figure : figures) {
     for (const bool svg : {false, true}) {
       if (svg ? !formats.svg : !formats.png) continue;
-      const auto target = out / (figure.name + (svg ? ".svg" : ".png"));
+      const std::string name = figure.name + (svg ? ".svg" : ".png");
+      const auto target = out / name;
       const auto partial = create_exclusive_temporary(target);  // gnuplot writes here
       outputs.emplace_back(partial, target);
-      script += "reset session\n";
-      script += svg ? "set terminal svg size " + std::to_string(figure.width_px) + "," +
-                          std::to_string(figure.height_px) +
-                          " dynamic enhanced font 'Sans,12' background rgb 'white'\n"
-                    : "set terminal pngcairo size " + std::to_string(figure.width_px) + "," +
-                          std::to_string(figure.height_px) + " enhanced font 'Sans,11'\n";
-      script += "set output " + gnuplot_quote(partial.string()) + "\n";
-      script += figure.body + "\nunset multiplot\nset output\n\n";
+      std::string terminal = "reset session\n";
+      terminal += svg ? "set terminal svg size " + std::to_string(figure.width_px) + "," +
+                            std::to_string(figure.height_px) +
+                            " dynamic enhanced font 'Sans,12' background rgb 'white'\n"
+                      : "set terminal pngcairo size " + std::to_string(figure.width_px) + "," +
+                            std::to_string(figure.height_px) + " enhanced font 'Sans,11'\n";
+      const std::string body = figure.body + "\nunset multiplot\nset output\n\n";
+      kept += terminal + "set output " + gnuplot_quote(name) + "\n" + body;
+      run += terminal + "set output " + gnuplot_quote(partial.string()) + "\n" + body;
     }
   }
-  const auto script_path = data / "figures.gp";
-  write_file_atomically(script_path.string(), script);
+  write_file_atomically((data / (set + ".gp")).string(), kept);
+  const auto script_path = create_exclusive_temporary(data / (set + ".gp"));
+  write_file_atomically(script_path.string(), run);
+  struct RemoveScript {
+    std::filesystem::path path;
+    ~RemoveScript() {
+      std::error_code ignored;
+      std::filesystem::remove(path, ignored);
+    }
+  } remove_script{script_path};
   const auto log = data / "gnuplot.log";
   const int status = run_with_timeout(*gnuplot, script_path.string(), log, timeout);
   if (status != 0) {
     for (const auto& [partial, target] : outputs) std::filesystem::remove(partial, error);
     throw std::runtime_error("gnuplot failed (exit " + std::to_string(status) + ") on " +
-                             script_path.string() + ": " + read_tail(log, 600));
+                             (data / (set + ".gp")).string() + ": " + read_tail(log, 600));
   }
   if (const std::string notes = read_tail(log, 2000); !notes.empty()) {
     spdlog::info("gnuplot said: {}", notes);
   }
-  spdlog::info("plot: {} figures drawn by {} ({})", figures.size(), *gnuplot, script_path.string());
+  spdlog::info("plot: {} figures drawn by {} ({})", figures.size(), *gnuplot, (data / (set + ".gp")).string());
   std::vector<std::string> written;
   for (const auto& [partial, target] : outputs) {
     if (!std::filesystem::exists(partial) || std::filesystem::file_size(partial) == 0) {

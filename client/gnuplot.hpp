@@ -42,10 +42,13 @@ std::string gnuplot_quote(const std::string& text);
 // neither leave the string nor reach a shell. Callers add the surrounding quotes.
 std::string gnuplot_text(const std::string& text);
 
-// Writes DIR/data/figures.gp and runs it; returns the files written. Throws
+// Draws the figures into DIR (their data files in DIR/data, named relative to DIR) and keeps
+// DIR/data/SET.gp, which redraws them in place (SET: "sim", "sweep"; one script per figure set,
+// so one set does not overwrite another's). Returns the files written. Throws
 // std::runtime_error when gnuplot is missing, fails (its message) or exceeds `timeout`.
 std::vector<std::string> render_figures(const std::vector<Figure>& figures,
                                         const std::string& out_dir, FigureFormats formats,
+                                        const std::string& set_name = "figures",
                                         std::chrono::milliseconds timeout = std::chrono::seconds(60));
 
 }  // namespace netmc::cli

@@ -33,7 +33,7 @@ std::vector<std::string> plot_sim_outputs(const std::string& dir, const std::str
   const SimOutputs outputs = load_sim_outputs(dir);
   const std::string data_dir = (std::filesystem::path(out_dir) / "data").string();
   std::filesystem::create_directories(data_dir);
-  return render_figures(sim_figures(outputs, data_dir), out_dir, formats);
+  return render_figures(sim_figures(outputs, data_dir), out_dir, formats, "sim");
 }
 
 std::function<int()> add_plot_command(CLI::App& app) {
@@ -68,7 +68,7 @@ peaks), contour_error (vs time, one panel per run), e_sum (vs iteration, log sca
 tau_histogram (loop delay of the first run). From --sweep: sweep-METRIC (mean over seeds with
 the min-max band, one line per run; unstable configurations left out and counted).
 gnuplot (Debian package gnuplot-nox) draws them; data files and the script are kept in
-OUT/data/ (figures.gp) for editing.)");
+OUT/data/ (sim.gp or sweep.gp: cd OUT && gnuplot data/sim.gp redraws in place) for editing.)");
 
   return [flags]() -> int {
     if (flags->sim_dir.empty() && flags->sweep_csv.empty()) {
@@ -104,7 +104,7 @@ OUT/data/ (figures.gp) for editing.)");
       }
       const std::string data_dir = (std::filesystem::path(out) / "data").string();
       std::filesystem::create_directories(data_dir);
-      written = render_figures(sweep_figures(table, metrics, data_dir), out, formats);
+      written = render_figures(sweep_figures(table, metrics, data_dir), out, formats, "sweep");
     }
     for (const auto& file : written) fmt::print("wrote {}\n", file);
     return 0;

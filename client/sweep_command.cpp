@@ -144,7 +144,7 @@ every configuration has finished. A run that becomes unstable stops at that iter
       const std::string data_dir = (std::filesystem::path(flags->plot_dir) / "data").string();
       std::filesystem::create_directories(data_dir);
       const auto figures = sweep_figures(CsvTable::parse(csv, "sweep"), {"e_max_m", "e_sum_m"}, data_dir);
-      for (const auto& file : render_figures(figures, flags->plot_dir, {})) fmt::print(report_file, "wrote {}\n", file);
+      for (const auto& file : render_figures(figures, flags->plot_dir, {}, "sweep")) fmt::print(report_file, "wrote {}\n", file);
     }
     return 0;
   };

@@ -36,6 +36,11 @@ std::string head(const fs::path& path, std::size_t bytes) {
 }
 
 // Temporaries of figures (NAME.png.XXXXXX, NAME.svg.XXXXXX) left in a directory.
+std::string read_text(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
 int leftovers(const fs::path& dir) {
   int count = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
@@ -69,7 +74,26 @@ TEST(PlotRender, SimPlotDrawsTheStandardFigures) {
   for (const char* name : {"contour", "contour_error", "e_sum", "tau_histogram"}) expect_figure(dir, name);
   EXPECT_TRUE(fs::exists(dir / "results.json"));
   EXPECT_TRUE(fs::exists(dir / "traces" / "2-adrc_ilccc.csv"));
-  EXPECT_TRUE(fs::exists(dir / "data" / "figures.gp"));
+  // The kept script names its data and figures relative to the figure directory: moved
+  // elsewhere, the directory redraws in place.
+  const std::string kept = read_text(dir / "data" / "sim.gp");
+  const std::string comment = "#   cd " + dir.string();
+  EXPECT_EQ(kept.find(dir.string()), kept.find(comment) + comment.size() - dir.string().size()) << kept;  // only in the comment
+  EXPECT_EQ(kept.find(".partial"), std::string::npos);
+  EXPECT_NE(kept.find("set output 'contour.png'"), std::string::npos);
+  EXPECT_NE(kept.find("'data/contour-1.dat'"), std::string::npos);
+  EXPECT_EQ(kept.rfind(dir.string()), kept.find(dir.string()));
+  for (const auto& entry : fs::directory_iterator(dir / "data")) {  // the script run is not kept
+    EXPECT_NE(entry.path().filename().string().rfind("sim.gp.", 0), 0u) << entry.path();
+  }
+  // Moved, the directory redraws itself with its kept script.
+  const auto moved = scratch("sim_moved");
+  fs::copy(dir, moved, fs::copy_options::recursive);
+  fs::remove(moved / "contour.png");
+  const std::string redraw = "cd '" + moved.string() + "' && " + *find_gnuplot() + " data/sim.gp";
+  EXPECT_EQ(std::system(redraw.c_str()), 0) << redraw;
+  EXPECT_GT(fs::file_size(moved / "contour.png"), 5000u);
+  fs::remove_all(moved);
 
   // netmc plot --sim redraws from the saved outputs alone.
   const auto again = scratch("sim_again");
@@ -157,11 +181,6 @@ TEST(PlotRender, FailingGnuplotLeavesNoFigureAndSaysWhy) {
   fs::remove_all(dir);
 }
 
-std::string read_text(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-}
-
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
   file << text;
@@ -189,7 +208,7 @@ TEST(PlotRender, HostileLabelsAreDrawnAsTextNeverRun) {
   ASSERT_EQ(netmc({"sim", "--spec", spec.string(), "--plot", sim_dir.string(), "-q"}), 0);
   expect_figure(sim_dir, "contour");
   EXPECT_FALSE(fs::exists(marker(1)));
-  EXPECT_EQ(read_text(sim_dir / "data" / "figures.gp").find('`'), std::string::npos);
+  EXPECT_EQ(read_text(sim_dir / "data" / "sim.gp").find('`'), std::string::npos);
 
   // 2. netmc plot --sim with a results.json whose label was edited.
   std::string results = read_text(sim_dir / "results.json");
