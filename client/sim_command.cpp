@@ -25,6 +25,8 @@ std::function<int()> add_sim_command(CLI::App& app) {
     std::string plot_dir;
     std::string plot_format = "png,svg";
     unsigned threads = 0;
+    bool print_spec = false;
+    bool list_presets = false;
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* sim = app.add_subcommand("sim", "Run a study in-process, in virtual time (default: --preset seed001)");
@@ -37,6 +39,9 @@ std::function<int()> add_sim_command(CLI::App& app) {
       ->type_name("FORMATS");
   sim->add_option("--threads", flags->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
+  sim->add_flag("--print-spec", flags->print_spec,
+                "Print the job spec of the study's first run as JSON (what --spec reads) and run nothing");
+  sim->add_flag("--list-presets", flags->list_presets, "Print the names of the presets and run nothing");
   sim->footer(R"(Examples:
   netmc sim                                        # paper 001's study (Table 1) and its table
   netmc sim --plot figures                         # ... plus figures/contour.png, contour_error,
@@ -50,7 +55,19 @@ Values are SI unless suffixed (s, ms, us, m, mm, um). Flags override the preset 
 every run. Output files are written whole, after every run has finished.)");
 
   return [flags]() -> int {
+    if (flags->list_presets) {
+      for (const auto& name : preset_names()) fmt::print("{}\n", name);
+      return 0;
+    }
     const StudyPlan plan = plan_from_flags(flags->study);
+    if (flags->print_spec) {
+      if (plan.jobs.size() > 1) {
+        spdlog::info("the study has {} runs; this is the first ({}); --controller picks another",
+                     plan.jobs.size(), plan.jobs.front().controller().name());
+      }
+      fmt::print("{}\n", job::to_json(plan.jobs.front()));
+      return 0;
+    }
     for (const auto& job : plan.jobs) {
       if (job.clock() == "realtime") {
         throw std::invalid_argument(

@@ -2,7 +2,7 @@
 include(CMakePackageConfigHelpers)
 
 # The programs.
-install(TARGETS netmc netmc-server netmc-axis RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS netmc netmc-server netmc-axis RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 
 # The pure libraries and their headers: a project that links netmc::control needs Eigen, and
 # neither Fast DDS nor protobuf.
@@ -10,19 +10,19 @@ foreach(library control plant netsim random)
   set_target_properties(netmc_${library} PROPERTIES EXPORT_NAME ${library})
 endforeach()
 install(TARGETS netmc_control netmc_plant netmc_netsim netmc_random EXPORT netmcTargets
-  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)
 foreach(dir control plant netsim)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/netmc/${dir}
-    FILES_MATCHING PATTERN "*.hpp")
+    COMPONENT dev FILES_MATCHING PATTERN "*.hpp")
 endforeach()
 set(NETMC_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/netmc)
-install(EXPORT netmcTargets NAMESPACE netmc:: DESTINATION ${NETMC_CMAKE_DIR})
+install(EXPORT netmcTargets NAMESPACE netmc:: DESTINATION ${NETMC_CMAKE_DIR} COMPONENT dev)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/netmcConfig.cmake.in
   ${PROJECT_BINARY_DIR}/netmcConfig.cmake INSTALL_DESTINATION ${NETMC_CMAKE_DIR})
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/netmcConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/netmcConfig.cmake ${PROJECT_BINARY_DIR}/netmcConfigVersion.cmake
-  DESTINATION ${NETMC_CMAKE_DIR})
+  DESTINATION ${NETMC_CMAKE_DIR} COMPONENT dev)
 
 # systemd units (their ExecStart names the installed programs) and what an operator starts from.
 # Written at install time: the prefix (cmake --install --prefix, or /usr in the .deb) is known
@@ -34,18 +34,37 @@ foreach(unit netmc-server.service netmc-axis@.service)
     set(NETMC_EXAMPLES \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DATADIR}/netmc/examples/etc-netmc\")
     configure_file(\"${PROJECT_SOURCE_DIR}/server/systemd/${unit}.in\"
       \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/lib/systemd/system/${unit}\" @ONLY)
-    message(STATUS \"Installing: \$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/lib/systemd/system/${unit}\")")
+    message(STATUS \"Installing: \$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/lib/systemd/system/${unit}\")"
+    COMPONENT runtime)
 endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/server/systemd/server.env ${PROJECT_SOURCE_DIR}/server/systemd/axis.env
-  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/etc-netmc)
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/etc-netmc COMPONENT runtime)
+# Example job specs, one per preset, written by the program itself at build time.
+set(NETMC_EXAMPLE_SPECS ${PROJECT_BINARY_DIR}/example-specs)
+add_custom_command(OUTPUT ${NETMC_EXAMPLE_SPECS}/seed001.json
+  COMMAND ${CMAKE_COMMAND} -DNETMC=$<TARGET_FILE:netmc> -DOUT=${NETMC_EXAMPLE_SPECS}
+          -P ${PROJECT_SOURCE_DIR}/cmake/write_example_specs.cmake
+  DEPENDS netmc ${PROJECT_SOURCE_DIR}/cmake/write_example_specs.cmake
+  COMMENT "netmc sim --preset NAME --print-spec, for every preset")
+add_custom_target(netmc_example_specs ALL DEPENDS ${NETMC_EXAMPLE_SPECS}/seed001.json)
+install(DIRECTORY ${NETMC_EXAMPLE_SPECS}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/specs COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/server/dds/profiles/udp_only.xml
-  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/dds-profiles)
-install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/make-lab-pki.sh DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc)
-install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/dds-profiles COMPONENT runtime)
+install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/make-lab-pki.sh DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc COMPONENT runtime)
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR}
+  COMPONENT runtime)
 
-# The .deb: `cpack -G DEB` in the build directory. Its dependencies are the Debian runtime
-# packages of the programs' shared libraries, found by dpkg-shlibdeps.
+# Two .debs: `cpack -G DEB` in the build directory. netmc (the programs, units, examples): its
+# dependencies are the Debian runtime packages of the programs' shared libraries, found by
+# dpkg-shlibdeps. netmc-dev (the pure libraries, headers, CMake package): needs Eigen's headers.
 set(CPACK_GENERATOR DEB)
+set(CPACK_DEB_COMPONENT_INSTALL ON)
+set(CPACK_COMPONENTS_ALL runtime dev)
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME netmc)
+set(CPACK_DEBIAN_DEV_PACKAGE_NAME netmc-dev)
+set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "libeigen3-dev (>= 3.4)")
+set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
+set(CPACK_COMPONENT_DEV_DESCRIPTION "netmc's pure libraries (control, plant, netsim) for find_package(netmc)")
 set(CPACK_PACKAGE_NAME netmc)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Networked motion control over DDS: server, axis nodes, client and libraries")
@@ -55,7 +74,7 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-# gnuplot draws `--plot` figures; Eigen's headers are what netmc::control's users compile with.
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "gnuplot-nox, libeigen3-dev")
+# gnuplot draws `--plot` figures.
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "gnuplot-nox")
 set(CPACK_STRIP_FILES ON)
 include(CPack)

@@ -4,7 +4,8 @@
 # package, the systemd units (naming the installed programs; systemd-analyze verifies them) and
 # the examples in place; a project of its own (tests/install/consumer) finds netmc with
 # find_package, links netmc::control without Fast DDS or protobuf, and its ADRC loop settles.
-# Then CPack's .deb: its dependencies are Debian's runtime packages, its files under /usr.
+# The example specs are one per preset and run. Then CPack's two .debs: netmc (programs, units,
+# examples; its dependencies Debian's runtime packages) and netmc-dev (libraries, headers), under /usr.
 # Usage: install_package.sh BUILD_DIR
 set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
@@ -26,6 +27,15 @@ for file in include/netmc/control/adrc_controller.hpp include/netmc/plant/plant_
   share/netmc/examples/dds-profiles/udp_only.xml share/doc/netmc/LICENSE; do
   [ -f "$prefix/$file" ] || { echo "FAIL: $file not installed"; exit 1; }
 done
+# The example specs: one per preset, each what `--spec` reads, giving the preset's first run.
+presets=$("$prefix/bin/netmc" sim --list-presets)
+[ "$(ls "$prefix/share/netmc/examples/specs" | sort)" = "$(for p in $presets; do echo "$p.json"; done | sort)" ] ||
+  { echo "FAIL: the example specs are not one per preset"; ls "$prefix/share/netmc/examples/specs"; exit 1; }
+"$prefix/bin/netmc" sim -q --spec "$prefix/share/netmc/examples/specs/seed001.json" --iterations 2 --json "$tmp/spec.json" >/dev/null
+"$prefix/bin/netmc" sim -q --preset seed001 --controller adrc --iterations 2 --json "$tmp/preset.json" >/dev/null
+cmp -s "$tmp/spec.json" "$tmp/preset.json" ||
+  { echo "FAIL: the installed seed001 spec does not run as the preset's first run"; diff "$tmp/spec.json" "$tmp/preset.json" | head; exit 1; }
+echo "example specs: $(echo $presets | wc -w), one per preset; seed001.json runs as netmc sim --preset seed001 --controller adrc"
 config=$(find "$prefix" -name netmcConfig.cmake)
 [ -n "$config" ] || { echo "FAIL: no netmcConfig.cmake"; exit 1; }
 units=$prefix/lib/systemd/system
@@ -53,6 +63,7 @@ echo "find_package(netmc) + netmc::control: built without Fast DDS or protobuf, 
 cpack --config "$build/CPackConfig.cmake" -B "$tmp/package" >"$tmp/cpack.log" 2>&1 ||
   { cat "$tmp/cpack.log"; exit 1; }
 deb=$(ls "$tmp/package"/netmc_"$version"_*.deb)
+dev=$(ls "$tmp/package"/netmc-dev_"$version"_*.deb)
 depends=$(dpkg-deb -f "$deb" Depends)
 echo "$(basename "$deb"): $(du -k "$deb" | cut -f1) KiB, Depends: $depends"
 for package in libfastrtps2.9 libprotobuf32 libc6 libstdc++6; do
@@ -60,9 +71,16 @@ for package in libfastrtps2.9 libprotobuf32 libc6 libstdc++6; do
 done
 dpkg-deb -c "$deb" >"$tmp/contents"
 for file in ./usr/bin/netmc ./usr/bin/netmc-server ./usr/bin/netmc-axis ./usr/lib/systemd/system/netmc-server.service \
-  ./usr/include/netmc/control/adrc_controller.hpp; do
+  ./usr/share/netmc/examples/specs/seed001.json; do
   grep -q " $file\$" "$tmp/contents" || { echo "FAIL: $file not in the .deb"; exit 1; }
 done
-dpkg-deb --fsys-tarfile "$deb" | tar -xO ./usr/lib/systemd/system/netmc-axis@.service | grep -q "^ExecStart=/usr/bin/netmc-axis " ||
+! grep -q "/usr/include/" "$tmp/contents" || { echo "FAIL: headers in the runtime package"; exit 1; }
+dpkg-deb --fsys-tarfile "$deb" | tar -xO ./usr/lib/systemd/system/netmc-axis@.service >"$tmp/unit"
+grep -q "^ExecStart=/usr/bin/netmc-axis " "$tmp/unit" ||
   { echo "FAIL: the packaged unit does not name /usr/bin/netmc-axis"; exit 1; }
-echo "the .deb holds the programs, libraries, headers and units under /usr"
+dpkg-deb -c "$dev" >"$tmp/dev-contents"
+grep -q " ./usr/include/netmc/control/adrc_controller.hpp$" "$tmp/dev-contents" &&
+  [[ "$(dpkg-deb -f "$dev" Depends)" == *libeigen3-dev* ]] ||
+  { echo "FAIL: netmc-dev lacks the headers or the Eigen dependency"; exit 1; }
+echo "$(basename "$dev"): $(du -k "$dev" | cut -f1) KiB, Depends: $(dpkg-deb -f "$dev" Depends)"
+echo "the .debs hold the programs, units and examples (netmc) and the libraries and headers (netmc-dev) under /usr"
