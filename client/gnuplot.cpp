@@ -156,8 +156,9 @@ std::vector<std::string> render_figures(const std::vector<Figure>& figures,
       run += terminal + "set output " + gnuplot_quote(partial.string()) + "\n" + body;
     }
   }
-  write_file_atomically((data / (set + ".gp")).string(), kept);
-  const auto script_path = create_exclusive_temporary(data / (set + ".gp"));
+  const auto kept_path = data / (set + ".gp");
+  write_file_atomically(kept_path.string(), kept);
+  const auto script_path = create_exclusive_temporary(kept_path);
   write_file_atomically(script_path.string(), run);
   struct RemoveScript {
     std::filesystem::path path;
@@ -171,12 +172,12 @@ std::vector<std::string> render_figures(const std::vector<Figure>& figures,
   if (status != 0) {
     for (const auto& [partial, target] : outputs) std::filesystem::remove(partial, error);
     throw std::runtime_error("gnuplot failed (exit " + std::to_string(status) + ") on " +
-                             (data / (set + ".gp")).string() + ": " + read_tail(log, 600));
+                             kept_path.string() + ": " + read_tail(log, 600));
   }
   if (const std::string notes = read_tail(log, 2000); !notes.empty()) {
     spdlog::info("gnuplot said: {}", notes);
   }
-  spdlog::info("plot: {} figures drawn by {} ({})", figures.size(), *gnuplot, (data / (set + ".gp")).string());
+  spdlog::info("plot: {} figures drawn by {} ({})", figures.size(), *gnuplot, kept_path.string());
   std::vector<std::string> written;
   for (const auto& [partial, target] : outputs) {
     if (!std::filesystem::exists(partial) || std::filesystem::file_size(partial) == 0) {

@@ -36,6 +36,11 @@ netmc::v1::Response ask_server(const std::string& server, const std::function<vo
   return expect_response(client, std::chrono::seconds(10), server);
 }
 
+// --server HOST:PORT (or $NETMC_SERVER) of the commands that talk to a netmc-server.
+void add_server_option(CLI::App* command, std::string& server) {
+  command->add_option("--server", server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
+}
+
 }  // namespace
 
 RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::v1::JobSpec& spec,
@@ -99,7 +104,7 @@ std::function<int()> add_run_command(CLI::App& app) {
   auto flags = std::make_shared<Flags>();
   CLI::App* run = app.add_subcommand(
       "run", "Run a study on a netmc-server and its axis nodes (same flags and presets as sim)");
-  run->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
+  add_server_option(run, flags->server);
   add_study_flags(run, flags->study);
   return [flags]() -> int {
     const StudyPlan plan = plan_from_flags(flags->study);
@@ -126,7 +131,7 @@ std::function<int()> add_nodes_command(CLI::App& app) {
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* nodes = app.add_subcommand("nodes", "List the axis nodes a netmc-server has discovered");
-  nodes->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
+  add_server_option(nodes, flags->server);
   nodes->add_flag("--json", flags->json,
                   "Print the reply as JSON (protobuf JSON mapping of netmc.v1.NodesReply), for scripts");
   return [flags]() -> int {
@@ -174,7 +179,7 @@ std::function<int()> add_status_command(CLI::App& app) {
   auto flags = std::make_shared<Flags>();
   CLI::App* status = app.add_subcommand("status", "The jobs a netmc-server holds: queued, running and the last 256 ended");
   status->add_option("JOB", flags->job, "Only this job (its id, as `netmc run` prints it)")->check(CLI::PositiveNumber);
-  status->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
+  add_server_option(status, flags->server);
   status->add_flag("--json", flags->json, "Print the reply as JSON (netmc.v1.StatusReply), for scripts");
   return [flags]() -> int {
     const auto response = ask_server(
@@ -202,7 +207,7 @@ std::function<int()> add_cancel_command(CLI::App& app) {
       "cancel", "Cancel a job of another connection: needs the server's admin token (NETMC_TOKEN_FILE naming the "
                 "file of netmc-server --admin-token-file); Ctrl-C on `netmc run` cancels its own job");
   cancel->add_option("JOB", flags->job, "The job's id")->required()->check(CLI::PositiveNumber);
-  cancel->add_option("--server", flags->server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
+  add_server_option(cancel, flags->server);
   return [flags]() -> int {
     print_jobs(ask_server(flags->server, [&](netmc::v1::Request& request) {
                  request.mutable_cancel()->set_job_id(flags->job);

@@ -73,7 +73,6 @@ class AxisNodeLink {
   // an axis of a server's job.
   std::optional<netmc::dds::JobControl> take_control();
   std::optional<netmc::dds::Setpoint> take_setpoint();
-  std::uint64_t forged_samples() const { return forged_.load(); }
   void publish(netmc::dds::Feedback& feedback);
   void publish_event(netmc::dds::AxisEvent& event);
   void publish_status(netmc::dds::NodeHealth health, const std::string& detail);

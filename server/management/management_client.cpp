@@ -1,8 +1,7 @@
 #include "server/management/management_client.hpp"
 
-#include "server/management/host_port.hpp"
-
 #include "server/management/access_token.hpp"
+#include "server/management/host_port.hpp"
 
 #include <array>
 #include <cctype>

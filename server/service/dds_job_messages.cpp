@@ -82,9 +82,9 @@ namespace {
 // True if `event` is an iteration end of this job (handed to `on_ended`); throws on a refusal or fault.
 bool handle_axis_event(const JobChannels& channels, std::uint64_t job_id, const netmc::dds::AxisEvent& event,
                        const std::function<void(const netmc::dds::AxisEvent&)>& on_ended) {
-  if (event.server() != channels.server || event.job_id() != job_id ||
-      axis_index(channels, event.axis()) >= channels.axes.size() ||
-      !from_axis_node(channels, axis_index(channels, event.axis()), channels.events->last_sender())) {
+  const std::size_t axis = axis_index(channels, event.axis());
+  if (event.server() != channels.server || event.job_id() != job_id || axis >= channels.axes.size() ||
+      !from_axis_node(channels, axis, channels.events->last_sender())) {
     return false;
   }
   switch (event.kind()) {

@@ -198,7 +198,7 @@ void JobService::admit(const Submission& submission) {
   session->send(response);
   queue_.push_back(job);
   spdlog::info("job {} accepted: {}, {} iterations on axes {}", job->id, job->status.label(), spec.iterations(),
-               fmt::format("{}", fmt::join(job->axes, ",")));
+               fmt::join(job->axes, ","));
   wake_.notify_all();
 }
 
@@ -253,9 +253,8 @@ void JobService::schedule() {
       busy_axes_.insert(job->axes.begin(), job->axes.end());
       job->status.set_state("running");
       job->status.clear_waiting_for();
-      std::string axes;
-      for (const auto& axis : job->axes) axes += (axes.empty() ? "" : ",") + axis;
-      spdlog::info("job {} running on axes {} ({} running, {} queued)", job->id, axes, running_.size() + 1,
+      spdlog::info("job {} running on axes {} ({} running, {} queued)", job->id, fmt::join(job->axes, ","),
+                   running_.size() + 1,
                    queue_.size());
       running_.emplace(job->id, std::thread([this, job] {
         run(*job);

@@ -1,5 +1,6 @@
 #include "server/service/node_directory.hpp"
 
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 
@@ -54,9 +55,8 @@ void NodeDirectory::run() {
         log_spoof(name, "participant " + status->participant().substr(0, 32) + " claims the name of live participant " +
                             it->second.status.participant());
       } else {
-        std::string axes;
-        for (const auto& axis : status->axes()) axes += (axes.empty() ? "" : ",") + axis;
-        spdlog::info("node {} joined: axes {}, plant {}, {} clock, participant {}", name, axes, status->plant(),
+        spdlog::info("node {} joined: axes {}, plant {}, {} clock, participant {}", name,
+                     fmt::join(status->axes(), ","), status->plant(),
                      status->clock(), status->participant());
         nodes_[name] = NodeRecord{*status, now, now, ""};  // new, or restarted (a new participant)
       }

@@ -160,6 +160,8 @@ TEST(PlotRender, SweepPlotDrawsMetricVsDelay) {
   ASSERT_EQ(netmc({"plot", "--sweep", csv, "--metric", "e_max_m,tau_p99_s"}), 0);
   expect_figure(dir, "sweep-e_max_m");
   expect_figure(dir, "sweep-tau_p99_s");
+  // The axis states the delays' lower bound, paper 001's 0.3 ms (sweep's default --delay-min).
+  EXPECT_NE(read_text(dir / "data" / "sweep.gp").find("(each delay uniform from 300 us up to it)"), std::string::npos);
   fs::remove_all(dir);
 }
 
