@@ -8,11 +8,11 @@
 #include <memory>
 #include <vector>
 
-#include "control/circle_trajectory.hpp"
-#include "control/contour_error_estimator.hpp"
-#include "control/corner_foot_point.hpp"
-#include "control/foot_point.hpp"
-#include "control/heart_trajectory.hpp"
+#include "control/trajectory/circle_trajectory.hpp"
+#include "control/contour_error/contour_error_estimator.hpp"
+#include "control/contour_error/corner_foot_point.hpp"
+#include "control/contour_error/foot_point.hpp"
+#include "control/trajectory/heart_trajectory.hpp"
 #include "netsim/random_stream.hpp"
 
 namespace netmc::cli {

@@ -7,8 +7,8 @@
 #include <cstddef>
 #include <string>
 
-#include "control/contour_error_estimator.hpp"
-#include "control/reference_trajectory.hpp"
+#include "control/contour_error/contour_error_estimator.hpp"
+#include "control/trajectory/reference_trajectory.hpp"
 
 namespace netmc::control {
 

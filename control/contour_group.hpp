@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "control/contour_error_estimator.hpp"
+#include "control/contour_error/contour_error_estimator.hpp"
 
 namespace netmc::control {
 

@@ -6,16 +6,16 @@
 #include <string_view>
 #include <vector>
 
-#include "control/adrc_controller.hpp"
-#include "control/contouring_controller.hpp"
-#include "control/iterative_learning_cross_coupling.hpp"
-#include "control/pid_axis_controller.hpp"
-#include "control/pid_cross_coupling.hpp"
-#include "control/spatial_sarc.hpp"
-#include "control/task_space_adrc.hpp"
-#include "control/task_space_darc.hpp"
-#include "control/task_space_diarc.hpp"
-#include "control/task_space_sarc.hpp"
+#include "control/axis/adrc_controller.hpp"
+#include "control/cross_coupling/contouring_controller.hpp"
+#include "control/cross_coupling/iterative_learning_cross_coupling.hpp"
+#include "control/axis/pid_axis_controller.hpp"
+#include "control/cross_coupling/pid_cross_coupling.hpp"
+#include "control/task_space/spatial_sarc.hpp"
+#include "control/task_space/task_space_adrc.hpp"
+#include "control/task_space/task_space_darc.hpp"
+#include "control/task_space/task_space_diarc.hpp"
+#include "control/task_space/task_space_sarc.hpp"
 
 namespace netmc::control {
 

@@ -8,7 +8,7 @@
 #include "control/contour_controller.hpp"
 #include "control/contour_group.hpp"
 #include "control/controller_catalog.hpp"
-#include "control/reference_trajectory.hpp"
+#include "control/trajectory/reference_trajectory.hpp"
 
 namespace netmc::control {
 

@@ -7,8 +7,8 @@
 
 #include "control/contour_group.hpp"
 #include "control/controller_catalog.hpp"
-#include "control/spatial_circle.hpp"
-#include "control/spatial_sarc.hpp"
+#include "control/trajectory/spatial_circle.hpp"
+#include "control/task_space/spatial_sarc.hpp"
 
 namespace netmc::control {
 

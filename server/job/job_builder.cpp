@@ -9,15 +9,15 @@
 #include <stdexcept>
 #include <vector>
 
-#include "control/circle_trajectory.hpp"
-#include "control/cubic_spline_curve.hpp"
-#include "control/ellipse_trajectory.hpp"
-#include "control/feed_rate_trajectory.hpp"
-#include "control/halted_trajectory.hpp"
-#include "control/line_trajectory.hpp"
-#include "control/lissajous_trajectory.hpp"
-#include "control/polyline_trajectory.hpp"
-#include "control/spatial_circle.hpp"
+#include "control/trajectory/circle_trajectory.hpp"
+#include "control/trajectory/cubic_spline_curve.hpp"
+#include "control/trajectory/ellipse_trajectory.hpp"
+#include "control/trajectory/feed_rate_trajectory.hpp"
+#include "control/trajectory/halted_trajectory.hpp"
+#include "control/trajectory/line_trajectory.hpp"
+#include "control/trajectory/lissajous_trajectory.hpp"
+#include "control/trajectory/polyline_trajectory.hpp"
+#include "control/trajectory/spatial_circle.hpp"
 #include "plant/plant_catalog.hpp"
 
 namespace netmc::job {

@@ -14,8 +14,8 @@
 
 #include "control/contour_group.hpp"
 #include "control/controller_catalog.hpp"
-#include "control/reference_trajectory.hpp"
-#include "control/spatial_circle.hpp"
+#include "control/trajectory/reference_trajectory.hpp"
+#include "control/trajectory/spatial_circle.hpp"
 #include "netsim/delay_model.hpp"
 #include "netsim/loss_model.hpp"
 #include "plant/axis_plant.hpp"

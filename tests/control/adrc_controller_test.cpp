@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/adrc_controller.hpp"
+#include "control/axis/adrc_controller.hpp"
 
 namespace netmc::control {
 namespace {

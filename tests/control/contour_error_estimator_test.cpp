@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "control/circle_trajectory.hpp"
-#include "control/contour_error_estimator.hpp"
-#include "control/line_trajectory.hpp"
+#include "control/trajectory/circle_trajectory.hpp"
+#include "control/contour_error/contour_error_estimator.hpp"
+#include "control/trajectory/line_trajectory.hpp"
 
 namespace netmc::control {
 namespace {

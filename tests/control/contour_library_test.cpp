@@ -10,12 +10,12 @@
 #include <numbers>
 #include <random>
 
-#include "control/cubic_spline_curve.hpp"
-#include "control/ellipse_trajectory.hpp"
-#include "control/feed_rate_trajectory.hpp"
-#include "control/lissajous_trajectory.hpp"
-#include "control/polyline_trajectory.hpp"
-#include "control/task_frame.hpp"
+#include "control/trajectory/cubic_spline_curve.hpp"
+#include "control/trajectory/ellipse_trajectory.hpp"
+#include "control/trajectory/feed_rate_trajectory.hpp"
+#include "control/trajectory/lissajous_trajectory.hpp"
+#include "control/trajectory/polyline_trajectory.hpp"
+#include "control/task_space/task_frame.hpp"
 
 namespace netmc::control {
 namespace {

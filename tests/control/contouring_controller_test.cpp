@@ -1,7 +1,7 @@
 // Composition of per-axis control and contour compensation (paper 001, eq. 15) and the catalog.
 #include <gtest/gtest.h>
 
-#include "control/circle_trajectory.hpp"
+#include "control/trajectory/circle_trajectory.hpp"
 #include "control/controller_catalog.hpp"
 
 namespace netmc::control {

@@ -1,8 +1,8 @@
 // Foot points near the heart's cusps: the exact (global) foot point is the independent truth.
 #include <gtest/gtest.h>
 
-#include "control/corner_foot_point.hpp"
-#include "control/heart_trajectory.hpp"
+#include "control/contour_error/corner_foot_point.hpp"
+#include "control/trajectory/heart_trajectory.hpp"
 
 namespace netmc::control {
 namespace {

@@ -3,10 +3,10 @@
 
 #include <cmath>
 
-#include "control/circle_trajectory.hpp"
-#include "control/ellipse_trajectory.hpp"
-#include "control/foot_point.hpp"
-#include "control/heart_trajectory.hpp"
+#include "control/trajectory/circle_trajectory.hpp"
+#include "control/trajectory/ellipse_trajectory.hpp"
+#include "control/contour_error/foot_point.hpp"
+#include "control/trajectory/heart_trajectory.hpp"
 
 namespace netmc::control {
 namespace {

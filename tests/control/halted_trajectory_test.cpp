@@ -5,9 +5,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/circle_trajectory.hpp"
-#include "control/halted_trajectory.hpp"
-#include "control/task_frame.hpp"
+#include "control/trajectory/circle_trajectory.hpp"
+#include "control/trajectory/halted_trajectory.hpp"
+#include "control/task_space/task_frame.hpp"
 
 namespace netmc::control {
 namespace {

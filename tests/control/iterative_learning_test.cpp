@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <numbers>
 
-#include "control/iterative_learning_cross_coupling.hpp"
-#include "control/pid_cross_coupling.hpp"
-#include "control/zero_phase_low_pass.hpp"
+#include "control/cross_coupling/iterative_learning_cross_coupling.hpp"
+#include "control/cross_coupling/pid_cross_coupling.hpp"
+#include "control/cross_coupling/zero_phase_low_pass.hpp"
 
 namespace netmc::control {
 namespace {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/spatial_circle.hpp"
-#include "control/spatial_sarc.hpp"
+#include "control/trajectory/spatial_circle.hpp"
+#include "control/task_space/spatial_sarc.hpp"
 #include "plant/plant_catalog.hpp"
 #include "plant/position_sensor.hpp"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <deque>
 
-#include "control/task_space_adrc.hpp"
+#include "control/task_space/task_space_adrc.hpp"
 
 namespace netmc::control {
 namespace {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/circle_trajectory.hpp"
-#include "control/task_space_darc.hpp"
+#include "control/trajectory/circle_trajectory.hpp"
+#include "control/task_space/task_space_darc.hpp"
 #include "tests/control/thesis_model_support.hpp"
 
 namespace netmc::control {

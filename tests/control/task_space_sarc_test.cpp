@@ -2,8 +2,8 @@
 // LTCF errors agree with the frames' definitions.
 #include <gtest/gtest.h>
 
-#include "control/circle_trajectory.hpp"
-#include "control/task_space_sarc.hpp"
+#include "control/trajectory/circle_trajectory.hpp"
+#include "control/task_space/task_space_sarc.hpp"
 
 namespace netmc::control {
 namespace {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/ellipse_trajectory.hpp"
-#include "control/task_space_darc.hpp"
+#include "control/trajectory/ellipse_trajectory.hpp"
+#include "control/task_space/task_space_darc.hpp"
 
 namespace netmc::control::thesis_support {
 

@@ -7,11 +7,11 @@
 #include <initializer_list>
 #include <numbers>
 
-#include "control/circle_trajectory.hpp"
-#include "control/task_space_darc.hpp"
-#include "control/task_space_sarc.hpp"
-#include "control/task_space_sliding_variable.hpp"
-#include "control/trajectory_initialization_filter.hpp"
+#include "control/trajectory/circle_trajectory.hpp"
+#include "control/task_space/task_space_darc.hpp"
+#include "control/task_space/task_space_sarc.hpp"
+#include "control/task_space/task_space_sliding_variable.hpp"
+#include "control/task_space/trajectory_initialization_filter.hpp"
 
 namespace netmc::control {
 namespace {

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/circle_trajectory.hpp"
-#include "control/ellipse_trajectory.hpp"
-#include "control/line_trajectory.hpp"
-#include "control/point_ellipse_distance.hpp"
+#include "control/trajectory/circle_trajectory.hpp"
+#include "control/trajectory/ellipse_trajectory.hpp"
+#include "control/trajectory/line_trajectory.hpp"
+#include "control/contour_error/point_ellipse_distance.hpp"
 
 namespace netmc::control {
 namespace {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/halted_trajectory.hpp"
+#include "control/trajectory/halted_trajectory.hpp"
 #include "server/sim/contour_job_runner.hpp"
 #include "sim_test_support.hpp"
 

@@ -5,8 +5,8 @@
 #include <memory>
 #include <numbers>
 
-#include "control/circle_trajectory.hpp"
-#include "control/ellipse_trajectory.hpp"
+#include "control/trajectory/circle_trajectory.hpp"
+#include "control/trajectory/ellipse_trajectory.hpp"
 #include "plant/plant_catalog.hpp"
 #include "plant/second_order_axis.hpp"
 #include "server/sim/contour_job.hpp"

@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "client/presets.hpp"
-#include "control/task_space_diarc.hpp"
+#include "control/task_space/task_space_diarc.hpp"
 #include "plant/plant_catalog.hpp"
 #include "tests/control/thesis_model_support.hpp"
 #include "server/job/job_builder.hpp"
