@@ -7,6 +7,7 @@
 
 #include "client/cee_command.hpp"
 #include "client/plot_command.hpp"
+#include "client/qft_command.hpp"
 #include "client/server_commands.hpp"
 #include "client/sim_command.hpp"
 #include "client/sweep_command.hpp"
@@ -38,6 +39,7 @@ Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
   const auto run_status = add_status_command(app);
   const auto run_cancel = add_cancel_command(app);
   const auto run_cee = add_cee_command(app);
+  const auto run_qft = add_qft_command(app);
   app.get_subcommand("run")->footer(R"(Examples:
   # with netmc-server and two netmc-axis nodes running (README "Distributed runs")
   netmc run --server 127.0.0.1:7300                          # paper 001's study in lockstep
@@ -50,6 +52,10 @@ Takes every flag and preset of netmc sim; --quiet prints only the final table.)"
   app.get_subcommand("cee")->footer(R"(Examples:
   netmc cee                                # 2000 samples per contour, seed 1
   netmc cee --points 20000 --max-lag-ms 5 --normal-sd-um 10)");
+  app.get_subcommand("qft")->footer(R"(Examples:
+  netmc qft                                # eq. 20 against the bounds, per design frequency
+  netmc qft --ccc eq20,eq19,pidccc         # paper 004's three cross-coupling controllers
+  netmc qft --plot figures                 # ... plus Bode and Nichols figures (PNG, SVG))");
   for (CLI::App* subcommand : app.get_subcommands({})) add_verbosity_flags(subcommand);
   try {
     app.parse(argc, argv);
@@ -76,6 +82,7 @@ Takes every flag and preset of netmc sim; --quiet prints only the final table.)"
     if (app.got_subcommand("cancel")) return run_cancel();
     if (app.got_subcommand("nodes")) return run_nodes();
     if (app.got_subcommand("cee")) return run_cee();
+    if (app.got_subcommand("qft")) return run_qft();
     std::cout << app.help();
     return 0;
   } catch (const std::invalid_argument& e) {
