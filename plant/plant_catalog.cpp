@@ -1,5 +1,8 @@
 #include "plant/plant_catalog.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -79,6 +82,131 @@ ResonantStageParameters stage004_axis_parameters(std::size_t axis) {
   return p;
 }
 
+// One overridable parameter of a plant's parameter struct P.
+template <class P>
+struct Setting {
+  std::string key;
+  std::string description;
+  std::function<void(P&, double)> apply;
+};
+
+void require_non_negative_value(const std::string& key, double value) {
+  if (!(value >= 0.0)) {
+    throw std::invalid_argument("plant: " + key + " must be >= 0 (got " + std::to_string(value) + ")");
+  }
+}
+
+std::vector<Setting<SecondOrderAxisParameters>> seed001_settings() {
+  using P = SecondOrderAxisParameters;
+  return {
+      {"a1", "position coefficient a1 (1/s^2); X 0, Y 0", [](P& p, double v) { p.a1 = v; }},
+      {"a2", "velocity coefficient a2 (1/s); X -20, Y -10", [](P& p, double v) { p.a2 = v; }},
+      {"b", "input gain b ((m/s^2) per input unit); X 20, Y 10", [](P& p, double v) { p.b = v; }},
+      {"coulomb_m_s2", "Coulomb friction level (m/s^2); X 0.060, Y 0.085",
+       [](P& p, double v) { p.coulomb_acceleration = v; }},
+      {"coulomb_velocity_scale_m_s", "tanh width of the friction sign (m/s); 1e-3",
+       [](P& p, double v) { p.coulomb_velocity_scale = v; }},
+  };
+}
+
+std::vector<Setting<BallScrewParameters>> ballscrew_settings() {
+  using P = BallScrewParameters;
+  return {
+      {"inertia_kg_m2", "J, reflected inertia (kg m^2); 0.8e-3", [](P& p, double v) { p.inertia = v; }},
+      {"damping_n_m_s_rad", "B, viscous damping (N m s/rad); 0.255", [](P& p, double v) { p.damping = v; }},
+      {"amplifier_gain_a_v", "Ka (A/V); 3.2", [](P& p, double v) { p.amplifier_gain = v; }},
+      {"torque_constant_n_m_a", "Kt (N m/A); 0.9", [](P& p, double v) { p.torque_constant = v; }},
+      {"lead_m_rad", "rg, screw lead (m/rad); 0.005", [](P& p, double v) { p.lead_m_per_rad = v; }},
+      // digest 3.7 [A]: a payload m on the table adds m rg^2 to J (3 kg: 0.875e-3 kg m^2)
+      {"load_kg", "payload on the table (kg), adds load * rg^2 to J; 0",
+       [](P& p, double v) {
+         require_non_negative_value("load_kg", v);
+         p.inertia += v * p.lead_m_per_rad * p.lead_m_per_rad;
+       }},
+  };
+}
+
+std::vector<Setting<LinearMotorParameters>> linmotor_settings() {
+  using P = LinearMotorParameters;
+  return {
+      {"mass_v_s2_m", "M, moving mass (V/(m/s^2)); X 0.12, Y 0.55", [](P& p, double v) { p.mass = v; }},
+      {"load_v_s2_m", "payload mass added to M (V/(m/s^2)); 0",
+       [](P& p, double v) {
+         require_non_negative_value("load_v_s2_m", v);
+         p.mass += v;
+       }},
+      {"damping_v_s_m", "B, viscous friction (V/(m/s)); X 0.3, Y 0.4", [](P& p, double v) { p.damping = v; }},
+      {"coulomb_v", "A, Coulomb friction (V); X 0.1, Y 0.15", [](P& p, double v) { p.coulomb = v; }},
+      {"stribeck_extra_v", "static minus Coulomb friction (V); 0", [](P& p, double v) { p.stribeck_extra = v; }},
+      {"stribeck_velocity_m_s", "Stribeck velocity (m/s); 0.01", [](P& p, double v) { p.stribeck_velocity = v; }},
+      {"cogging_scale", "factor on every cogging amplitude; 1",
+       [](P& p, double v) {
+         for (auto& harmonic : p.cogging) {
+           harmonic.sine *= v;
+           harmonic.cosine *= v;
+         }
+       }},
+  };
+}
+
+std::vector<Setting<ResonantStageParameters>> stage004_settings() {
+  using P = ResonantStageParameters;
+  std::vector<Setting<P>> out = {
+      {"mass_kg", "m, moving mass (kg); X 24, Y 30", [](P& p, double v) { p.mass = v; }},
+      {"load_kg", "payload added to m (kg); 0",
+       [](P& p, double v) {
+         require_non_negative_value("load_kg", v);
+         p.mass += v;
+       }},
+  };
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string n = std::to_string(i + 1);
+    auto mode = [i, n](P& p) -> ResonanceMode& {
+      if (i >= p.modes.size()) {
+        throw std::invalid_argument("plant: this axis has " + std::to_string(p.modes.size()) +
+                                    " resonances, not " + n);
+      }
+      return p.modes[i];
+    };
+    out.push_back({"mode" + n + "_gain", "K_" + n + " of resonance " + n + " (m/(N s^2))",
+                   [mode](P& p, double v) { mode(p).gain = v; }});
+    out.push_back({"mode" + n + "_damping", "x_" + n + ", damping ratio of resonance " + n,
+                   [mode](P& p, double v) { mode(p).damping_ratio = v; }});
+    out.push_back({"mode" + n + "_frequency_hz", "f_" + n + " (Hz)",
+                   [mode](P& p, double v) { mode(p).frequency_hz = v; }});
+  }
+  return out;
+}
+
+template <class P>
+std::vector<PlantParameter> describe_settings(const std::vector<Setting<P>>& settings) {
+  std::vector<PlantParameter> out;
+  for (const auto& s : settings) out.push_back({s.key, s.description});
+  return out;
+}
+
+// The axis's nominal parameters with the job's overrides applied in order.
+template <class P>
+P with_overrides(P p, const std::vector<Setting<P>>& settings, const AxisOverrides* overrides,
+                 std::string_view plant_name) {
+  if (!overrides) return p;
+  for (const auto& [key, value] : overrides->parameters) {
+    if (!std::isfinite(value)) {
+      throw std::invalid_argument("plant: " + key + " must be a finite number (got " + std::to_string(value) + ")");
+    }
+    const auto it = std::find_if(settings.begin(), settings.end(), [&](const auto& s) { return s.key == key; });
+    if (it == settings.end()) {
+      std::string keys;
+      for (const auto& s : settings) keys += (keys.empty() ? "" : ", ") + s.key;
+      throw std::invalid_argument("plant: " + std::string(plant_name) + " has no parameter '" + key.substr(0, 64) +
+                                  "' (expected one of: " + keys + ")");
+    }
+    it->apply(p, value);
+  }
+  p.disturbance = overrides->disturbance;
+  return p;
+}
+
 const char* const kNames[] = {"seed001", "ballscrew", "linmotor", "stage004"};
 const char* const kAxisLabels[] = {"X", "Y", "Z"};
 
@@ -113,7 +241,22 @@ SecondOrderAxisParameters seed001_axis_parameters(std::size_t axis) {
 
 std::vector<std::string> plant_names() { return {std::begin(kNames), std::end(kNames)}; }
 
-AxisSet make_plant_set(std::string_view name, std::size_t axis_count) {
+std::vector<PlantParameter> plant_parameters(std::string_view name) {
+  if (name == "seed001") return describe_settings(seed001_settings());
+  if (name == "ballscrew") return describe_settings(ballscrew_settings());
+  if (name == "linmotor") return describe_settings(linmotor_settings());
+  if (name == "stage004") return describe_settings(stage004_settings());
+  throw std::invalid_argument("plant: unknown name '" + std::string(name) + "' (expected one of: " + expected_names() + ")");
+}
+
+std::string plant_input_unit(std::string_view name) {
+  if (name == "seed001") return "m/s^2";
+  if (name == "stage004") return "N";
+  plant_parameters(name);  // throws for an unknown name
+  return "V";
+}
+
+AxisSet make_plant_set(std::string_view name, std::size_t axis_count, const std::vector<AxisOverrides>& overrides) {
   std::string title;
   if (name == "seed001") {
     title = "seed001: paper 001 eq. 3 servo axes (digest 1.7 [A] defaults)";
@@ -131,18 +274,25 @@ AxisSet make_plant_set(std::string_view name, std::size_t axis_count) {
     throw std::invalid_argument("plant: axis_count must be 1, 2 or 3 (got " +
                                 std::to_string(axis_count) + ")");
   }
+  if (overrides.size() > axis_count) {
+    throw std::invalid_argument("plant: overrides for " + std::to_string(overrides.size()) + " axes, the set has " +
+                                std::to_string(axis_count));
+  }
   AxisSet set;
   set.description = title;
   for (std::size_t axis = 0; axis < axis_count; ++axis) {
+    const AxisOverrides* changes = axis < overrides.size() ? &overrides[axis] : nullptr;
     std::unique_ptr<AxisPlant> plant;
     if (name == "seed001") {
-      plant = std::make_unique<SecondOrderAxis>(seed001_axis_parameters(axis));
+      plant = std::make_unique<SecondOrderAxis>(with_overrides(seed001_axis_parameters(axis), seed001_settings(), changes, name));
     } else if (name == "ballscrew") {
-      plant = std::make_unique<BallScrewDrive>(ball_screw_axis_parameters());
+      plant = std::make_unique<BallScrewDrive>(with_overrides(ball_screw_axis_parameters(), ballscrew_settings(), changes, name));
     } else if (name == "linmotor") {
-      plant = std::make_unique<LinearMotorAxis>(linear_motor_axis_parameters(axis));
+      plant = std::make_unique<LinearMotorAxis>(
+          with_overrides(linear_motor_axis_parameters(axis), linmotor_settings(), changes, name));
     } else {
-      plant = std::make_unique<ResonantStageAxis>(stage004_axis_parameters(axis));
+      plant = std::make_unique<ResonantStageAxis>(
+          with_overrides(stage004_axis_parameters(axis), stage004_settings(), changes, name));
     }
     plant->reset(0.0, 0.0);
     set.description += std::string(" | ") + kAxisLabels[axis] + ": " + plant->describe();

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "plant/axis_plant.hpp"
+#include "plant/disturbance.hpp"
 #include "plant/second_order_axis.hpp"
 
 namespace netmc::plant {
@@ -21,9 +22,29 @@ struct AxisSet {
 // "seed001", "ballscrew", "linmotor", "stage004".
 std::vector<std::string> plant_names();
 
-// axis_count 1..3 (X, Y, and a third axis with the Y parameters). Throws std::invalid_argument
-// for an unknown name ("plant: unknown name 'x' (expected one of: ...)") or a bad axis_count.
-AxisSet make_plant_set(std::string_view name, std::size_t axis_count);
+// A parameter of a named plant that a job may change per axis (a payload, a friction level).
+struct PlantParameter {
+  std::string key;          // e.g. "load_kg"
+  std::string description;  // what it is, with its unit and the default of each axis
+};
+// The keys `name` takes; throws std::invalid_argument for an unknown plant.
+std::vector<PlantParameter> plant_parameters(std::string_view name);
+// The unit of the plant's input, where an additive disturbance enters (V, N, m/s^2).
+std::string plant_input_unit(std::string_view name);
+
+// A job's changes to one axis of the set: parameters by key, applied in order over the axis's
+// nominal ones, and a disturbance in the plant's input unit.
+struct AxisOverrides {
+  std::vector<std::pair<std::string, double>> parameters;
+  Disturbance disturbance;
+};
+
+// axis_count 1..3 (X, Y, and a third axis with the Y parameters); `overrides` has at most
+// axis_count entries (axis 0 first; missing ones change nothing). Throws std::invalid_argument
+// for an unknown name ("plant: unknown name 'x' (expected one of: ...)"), a bad axis_count, an
+// unknown key (naming the plant and its keys) or a value the model rejects.
+AxisSet make_plant_set(std::string_view name, std::size_t axis_count,
+                       const std::vector<AxisOverrides>& overrides = {});
 
 // Paper 001 axis parameters used by "seed001" (axis 0 = X, 1 = Y, 2 = copy of Y). The single
 // place to recalibrate the friction level (digest 1.7 [A]).

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -104,6 +105,62 @@ TEST(Disturbance, ValidationNamesTheField) {
   Disturbance c;
   c.constant = 0.5;
   EXPECT_EQ(describe_disturbance(c, "N"), "const 0.5 N");
+}
+
+}  // namespace
+}  // namespace netmc::plant
+
+namespace netmc::plant {
+namespace {
+
+TEST(Disturbance, StepSwitchesOffAtItsOffTime) {
+  Disturbance d;
+  d.step_amplitude = 0.8;
+  d.step_time_s = 2.2;
+  d.step_off_s = 5.2;
+  EXPECT_EQ(d.value(2.1), 0.0);
+  EXPECT_EQ(d.value(2.2), 0.8);
+  EXPECT_EQ(d.value(5.19), 0.8);
+  EXPECT_EQ(d.value(5.2), 0.0);
+  // One interval across both switches: three pieces at the right levels.
+  std::vector<std::array<double, 3>> pieces;
+  for_each_smooth_piece(d, 2.0, 4.0, [&](double t0, double dt, double level) { pieces.push_back({t0, dt, level}); });
+  ASSERT_EQ(pieces.size(), 3u);
+  EXPECT_EQ(pieces[0][2], 0.0);
+  EXPECT_NEAR(pieces[1][0], 2.2, 1e-15);
+  EXPECT_NEAR(pieces[1][1], 3.0, 1e-12);
+  EXPECT_EQ(pieces[1][2], 0.8);
+  EXPECT_NEAR(pieces[2][0], 5.2, 1e-15);
+  EXPECT_EQ(pieces[2][2], 0.0);
+  d.step_off_s = 2.0;  // off before on
+  EXPECT_THROW(validate_disturbance(d, "test"), std::invalid_argument);
+}
+
+TEST(Disturbance, BandLimitedNoiseHasItsStddevAndNoPowerAboveItsBand) {
+  Disturbance d;
+  d.noise = make_band_limited_noise(0.5, 20.0, 42);
+  EXPECT_FALSE(d.is_zero());
+  EXPECT_FALSE(smooth_part_is_constant(d));
+  // Variance over a long run against stddev^2; the same seed gives the same signal.
+  const int n = 200000;
+  const double dt = 1e-3;
+  double sum = 0.0, sum2 = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double v = d.value(i * dt);
+    sum += v;
+    sum2 += v * v;
+  }
+  const double mean = sum / n;
+  EXPECT_NEAR(std::sqrt(sum2 / n - mean * mean), 0.5, 0.02);
+  EXPECT_EQ(make_band_limited_noise(0.5, 20.0, 42).value(1.234), d.value(1.234));
+  EXPECT_NE(make_band_limited_noise(0.5, 20.0, 43).value(1.234), d.value(1.234));
+  // Band limit: every component lies in (0, 20 Hz].
+  for (double w : d.noise.angular_frequency) {
+    EXPECT_GT(w, 0.0);
+    EXPECT_LE(w, 2.0 * std::numbers::pi * 20.0);
+  }
+  d.noise.bandwidth_hz = 0.0;
+  EXPECT_THROW(validate_disturbance(d, "test"), std::invalid_argument);
 }
 
 }  // namespace
