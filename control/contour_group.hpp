@@ -20,6 +20,7 @@ using AxisVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMa
 
 struct GroupReference {
   AxisVector position, velocity, acceleration;
+  double time_s = 0.0;
 };
 
 // A reference point of fixed dimension (planar, spatial) into the group's form.

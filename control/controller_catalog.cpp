@@ -2,11 +2,13 @@
 
 #include <stdexcept>
 
+#include "control/data_driven/data_driven_contouring.hpp"
+
 namespace netmc::control {
 namespace {
 
 std::string usage() {
-  return "expected gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, gtcf-adrc, AXIS or "
+  return "expected mfa-dtsmc, mfac, gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, gtcf-adrc, AXIS or "
          "AXIS+COMPENSATOR with AXIS one of adrc, pid and "
          "COMPENSATOR one of pidccc, ilccc";
 }
@@ -33,7 +35,8 @@ std::vector<std::string> contour_compensator_names() { return {"pidccc", "ilccc"
 
 ContouringController make_contouring_controller(std::string_view name,
                                                 const ControllerSettings& settings,
-                                                double sample_period_s) {
+                                                double sample_period_s,
+                                                std::shared_ptr<const ReferenceTrajectory> trajectory) {
   const std::size_t plus = name.find('+');
   const std::string_view axis_name = name.substr(0, plus);
   const std::string_view compensator_name =
@@ -44,12 +47,16 @@ ContouringController make_contouring_controller(std::string_view name,
     throw std::invalid_argument("controller: unknown name '" + std::string(name) + "' (" +
                                 usage() + ")");
   }
-  std::unique_ptr<AxisController> y_axis =
-      axis_name == "adrc" && settings.adrc_y
-          ? std::make_unique<AdrcController>(*settings.adrc_y, sample_period_s)
-          : x_axis->clone();
+  std::unique_ptr<AxisController> y_axis;
+  if (axis_name == "adrc" && settings.adrc_y) {
+    y_axis = std::make_unique<AdrcController>(*settings.adrc_y, sample_period_s);
+  } else if (axis_name == "pid" && settings.pid_y) {
+    y_axis = std::make_unique<PidAxisController>(*settings.pid_y, sample_period_s);
+  } else {
+    y_axis = x_axis->clone();
+  }
   return ContouringController(std::move(x_axis), std::move(y_axis),
-                              make_contour_error_estimator(settings.estimator),
+                              make_contour_error_estimator(settings.estimator, std::move(trajectory)),
                               std::move(compensator));
 }
 
@@ -58,6 +65,19 @@ std::unique_ptr<ContourController> make_contour_controller(std::string_view name
                                                            double sample_period_s,
                                                            const ReferenceTrajectory& trajectory) {
   const auto& filter = settings.initialization_filter;
+  if (name == "mfa-dtsmc" || name == "mfac") {
+    std::unique_ptr<DataDrivenAxisLaw> x, y;
+    if (name == "mfa-dtsmc") {
+      x = std::make_unique<MfaDtsmcAxis>(settings.mfa_dtsmc, sample_period_s);
+      y = std::make_unique<MfaDtsmcAxis>(settings.mfa_dtsmc_y.value_or(settings.mfa_dtsmc), sample_period_s);
+    } else {
+      x = std::make_unique<CompactFormMfacAxis>(settings.mfac);
+      y = std::make_unique<CompactFormMfacAxis>(settings.mfac_y.value_or(settings.mfac));
+    }
+    return std::make_unique<DataDrivenContouring>(
+        std::move(x), std::move(y), make_contour_error_estimator(settings.estimator, trajectory.clone()),
+        sample_period_s);
+  }
   if (name == "gtcf-sarc") {
     return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, make_task_frame(trajectory), filter);
   }
@@ -73,7 +93,8 @@ std::unique_ptr<ContourController> make_contour_controller(std::string_view name
     return std::make_unique<TaskSpaceDiarc>(settings.diarc, sample_period_s, make_task_frame(trajectory), filter);
   }
   if (name == "ltcf-diarc") return std::make_unique<TaskSpaceDiarc>(settings.diarc, sample_period_s, nullptr, filter, settings.local_frame_rate);
-  return std::make_unique<ContouringController>(make_contouring_controller(name, settings, sample_period_s));
+  return std::make_unique<ContouringController>(
+      make_contouring_controller(name, settings, sample_period_s, trajectory.clone()));
 }
 
 }  // namespace netmc::control

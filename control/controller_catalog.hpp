@@ -8,6 +8,8 @@
 
 #include "control/axis/adrc_controller.hpp"
 #include "control/cross_coupling/contouring_controller.hpp"
+#include "control/data_driven/compact_form_mfac.hpp"
+#include "control/data_driven/mfa_dtsmc_axis.hpp"
 #include "control/cross_coupling/iterative_learning_cross_coupling.hpp"
 #include "control/axis/pid_axis_controller.hpp"
 #include "control/cross_coupling/pid_cross_coupling.hpp"
@@ -36,19 +38,28 @@ struct ControllerSettings {
   InitializationFilterSettings initialization_filter;
   // How the local-frame controllers (ltcf-*) differentiate their error.
   LocalFrameRate local_frame_rate = LocalFrameRate::frozen;
+  // Paper 002's data-driven laws (mfa-dtsmc = C4, mfac = C3); the y axis's when set.
+  MfaDtsmcGains mfa_dtsmc;
+  std::optional<MfaDtsmcGains> mfa_dtsmc_y;
+  CompactFormMfacGains mfac;
+  std::optional<CompactFormMfacGains> mfac_y;
+  std::optional<PidAxisGains> pid_y;
   std::string estimator = "curvature";
 };
 
 std::vector<std::string> axis_controller_names();        // adrc, pid
 std::vector<std::string> contour_compensator_names();    // pidccc, ilccc
 // Throws std::invalid_argument("controller: ...") for an unknown name or invalid gain.
+// `trajectory` is needed by the foot-point estimators (settings.estimator newton, steffensen).
 ContouringController make_contouring_controller(std::string_view name,
                                                 const ControllerSettings& settings,
-                                                double sample_period_s);
+                                                double sample_period_s,
+                                                std::shared_ptr<const ReferenceTrajectory> trajectory = nullptr);
 
 // Every controller by name: AXIS[+COMPENSATOR] as above, or a task-space contouring controller
 // gtcf-sarc / ltcf-sarc (thesis ch. 2), gtcf-darc / ltcf-darc / gtcf-diarc / ltcf-diarc
-// (thesis ch. 3) or gtcf-adrc (task-space ADRC) on the contour of `trajectory`.
+// (thesis ch. 3) or gtcf-adrc (task-space ADRC) on the contour of `trajectory`, or paper 002's
+// data-driven contouring mfa-dtsmc / mfac.
 std::unique_ptr<ContourController> make_contour_controller(std::string_view name,
                                                            const ControllerSettings& settings,
                                                            double sample_period_s,

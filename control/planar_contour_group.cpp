@@ -11,6 +11,7 @@ PlanarContour::PlanarContour(std::shared_ptr<const ReferenceTrajectory> trajecto
 
 void PlanarContour::sample(double time_s, GroupReference& out) const {
   assign_reference(trajectory_->sample(time_s), out);
+  out.time_s = time_s;
 }
 
 double PlanarContour::contour_error(const AxisVector& point) const {
@@ -34,6 +35,7 @@ const GroupCycle& PlanarGroupController::step(std::size_t cycle, const GroupRefe
   point.position = reference.position.head<2>();
   point.velocity = reference.velocity.head<2>();
   point.acceleration = reference.acceleration.head<2>();
+  point.time_s = reference.time_s;
   const ContouringCycle out = controller_->step(cycle, point, Eigen::Vector2d(measured[0], measured[1]));
   cycle_.command = out.command;
   cycle_.axis_command = out.axis_command;

@@ -17,6 +17,7 @@ SpatialContour::SpatialContour(std::shared_ptr<const SpatialCircle> circle, doub
 
 void SpatialContour::sample(double time_s, GroupReference& out) const {
   assign_reference(circle_->sample(time_s), out);
+  out.time_s = time_s;
 }
 
 double SpatialContour::contour_error(const AxisVector& point) const {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "control/contour_error/foot_point_estimator.hpp"
+
 namespace netmc::control {
 namespace {
 
@@ -58,13 +60,19 @@ std::unique_ptr<ContourErrorEstimator> CurvatureContourErrorEstimator::clone() c
   return std::make_unique<CurvatureContourErrorEstimator>(*this);
 }
 
-std::vector<std::string> contour_error_estimator_names() { return {"tangent", "curvature"}; }
+std::vector<std::string> contour_error_estimator_names() { return {"tangent", "curvature", "newton", "steffensen"}; }
 
-std::unique_ptr<ContourErrorEstimator> make_contour_error_estimator(std::string_view name) {
+std::unique_ptr<ContourErrorEstimator> make_contour_error_estimator(
+    std::string_view name, std::shared_ptr<const ReferenceTrajectory> trajectory) {
   if (name == "tangent") return std::make_unique<TangentContourErrorEstimator>();
   if (name == "curvature") return std::make_unique<CurvatureContourErrorEstimator>();
-  throw std::invalid_argument("estimator: unknown name '" + std::string(name) +
-                              "' (expected one of: tangent, curvature)");
+  if (name == "newton" || name == "steffensen") {
+    if (!trajectory) throw std::invalid_argument("estimator: " + std::string(name) + " needs the trajectory");
+    return std::make_unique<FootPointContourErrorEstimator>(
+        name == "newton" ? FootPointMethod::newton : FootPointMethod::steffensen, std::move(trajectory));
+  }
+  throw std::invalid_argument("estimator: unknown name '" + std::string(name).substr(0, 64) +
+                              "' (expected one of: tangent, curvature, newton, steffensen)");
 }
 
 }  // namespace netmc::control

@@ -18,7 +18,14 @@ struct ContourErrorEstimate {
   double contour_error = 0.0;   // eps [m]
   double cx = 0.0;              // cross-coupling gains of eq. 11/13
   double cy = 0.0;
+  int iterations = 0;           // foot-point updates of an iterative estimator, else 0
 };
+
+// The estimated contour-error vector (measured point minus its foot point): eps along the
+// right-hand normal (cx, -cy), exact for the foot-point estimators and first order for the others.
+inline Eigen::Vector2d contour_error_vector(const ContourErrorEstimate& e) {
+  return e.contour_error * Eigen::Vector2d(e.cx, -e.cy);
+}
 
 class ContourErrorEstimator {
  public:
@@ -50,8 +57,11 @@ class CurvatureContourErrorEstimator final : public ContourErrorEstimator {
   std::string name() const override { return "curvature"; }
 };
 
+// tangent, curvature, newton, steffensen
 std::vector<std::string> contour_error_estimator_names();
-// Throws std::invalid_argument naming the field for an unknown name.
-std::unique_ptr<ContourErrorEstimator> make_contour_error_estimator(std::string_view name);
+// Throws std::invalid_argument naming the field for an unknown name. The foot-point estimators
+// (newton, steffensen; foot_point_estimator.hpp) search `trajectory`, which they then need.
+std::unique_ptr<ContourErrorEstimator> make_contour_error_estimator(
+    std::string_view name, std::shared_ptr<const ReferenceTrajectory> trajectory = nullptr);
 
 }  // namespace netmc::control

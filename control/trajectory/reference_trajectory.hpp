@@ -13,6 +13,7 @@ struct ReferencePoint {
   Eigen::Vector2d position = Eigen::Vector2d::Zero();
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
   Eigen::Vector2d acceleration = Eigen::Vector2d::Zero();
+  double time_s = 0.0;  // the reference's time, for estimators that search the trajectory near it
 };
 
 class ReferenceTrajectory {

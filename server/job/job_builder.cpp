@@ -14,6 +14,7 @@
 #include "control/trajectory/ellipse_trajectory.hpp"
 #include "control/trajectory/feed_rate_trajectory.hpp"
 #include "control/trajectory/halted_trajectory.hpp"
+#include "control/trajectory/heart_trajectory.hpp"
 #include "control/trajectory/line_trajectory.hpp"
 #include "control/trajectory/lissajous_trajectory.hpp"
 #include "control/trajectory/polyline_trajectory.hpp"
@@ -126,13 +127,21 @@ std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1:
       auto curve = std::make_shared<control::CubicSplineCurve>(build_points(s.points()));
       return std::make_shared<control::FeedRateTrajectory>(std::move(curve), build_feed(s.feed()));
     }
+    case netmc::v1::Trajectory::kHeart: {
+      const auto& h = t.heart();
+      control::HeartParameters p;
+      p.center = {h.center_x_m(), h.center_y_m()};
+      p.scale_m = h.scale_m();
+      p.period_s = h.period_s();
+      return std::make_shared<control::HeartTrajectory>(p);
+    }
     case netmc::v1::Trajectory::kSpatialCircle:
       throw std::invalid_argument("trajectory.spatial_circle: a three-axis contour, not a planar trajectory");
     case netmc::v1::Trajectory::SHAPE_NOT_SET:
       break;
   }
   throw std::invalid_argument(
-      "trajectory: missing (expected circle, ellipse, line, lissajous, polyline or spline)");
+      "trajectory: missing (expected circle, ellipse, line, heart, lissajous, polyline or spline)");
 }
 
 std::shared_ptr<const control::ReferenceTrajectory> build_trajectory(
@@ -264,6 +273,50 @@ control::AdrcGains build_adrc(const netmc::v1::AdrcGains& a, control::AdrcGains 
   return base;
 }
 
+control::MfaDtsmcGains build_mfa_dtsmc(const netmc::v1::MfaDtsmcGains& m, control::MfaDtsmcGains g) {
+  auto& e = g.estimator;
+  auto& t = g.sliding;
+  if (m.has_mu()) e.mu = m.mu();
+  if (m.has_eta()) e.eta = m.eta();
+  if (m.has_sigma()) e.sigma = m.sigma();
+  if (m.has_gamma()) e.gamma = m.gamma();
+  if (m.has_tau()) e.tau = m.tau();
+  if (m.has_rho()) e.rho = m.rho();
+  if (m.has_epsilon()) e.epsilon = m.epsilon();
+  if (m.has_phi_initial()) e.phi_initial = m.phi_initial();
+  if (m.has_psi_initial()) e.psi_initial = m.psi_initial();
+  if (m.has_d0()) e.disturbance_bound = m.d0();
+  if (m.has_lambda1()) t.lambda1 = m.lambda1();
+  if (m.has_lambda2()) t.lambda2 = m.lambda2();
+  if (m.has_alpha()) t.alpha = m.alpha();
+  if (m.has_beta()) t.beta = m.beta();
+  if (m.has_q()) t.q = m.q();
+  if (m.has_delta1()) t.delta1 = m.delta1();
+  if (m.has_delta2()) t.delta2 = m.delta2();
+  if (m.has_lambda()) t.lambda = m.lambda();
+  if (m.has_lambda_s()) g.switching_gain = m.lambda_s();
+  if (m.has_delta()) g.contour_weight = m.delta();
+  return g;
+}
+
+control::CompactFormMfacGains build_mfac(const netmc::v1::MfacGains& m, control::CompactFormMfacGains g) {
+  if (m.has_mu()) g.mu = m.mu();
+  if (m.has_lambda()) g.lambda = m.lambda();
+  if (m.has_rho()) g.rho = m.rho();
+  if (m.has_eta()) g.eta = m.eta();
+  if (m.has_epsilon()) g.epsilon = m.epsilon();
+  if (m.has_delta()) g.contour_weight = m.delta();
+  if (m.has_phi_initial()) g.phi_initial = m.phi_initial();
+  return g;
+}
+
+control::PidAxisGains build_pid(const netmc::v1::PidGains& p, control::PidAxisGains g) {
+  if (p.has_kp()) g.kp = p.kp();
+  if (p.has_ki()) g.ki = p.ki();
+  if (p.has_kd()) g.kd = p.kd();
+  return g;
+}
+
 control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   control::ControllerSettings s;
   s.adrc = build_adrc(c.adrc(), s.adrc, "controller.adrc");
@@ -279,9 +332,12 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
     throw std::invalid_argument("controller.gtcf_adrc.observer_input_delay: expected at most 100000 periods");
   }
   s.gtcf_adrc.observer_input_delay = g.observer_input_delay();
-  if (c.pid().has_kp()) s.pid.kp = c.pid().kp();
-  if (c.pid().has_ki()) s.pid.ki = c.pid().ki();
-  if (c.pid().has_kd()) s.pid.kd = c.pid().kd();
+  s.pid = build_pid(c.pid(), s.pid);
+  if (c.has_pid_y()) s.pid_y = build_pid(c.pid_y(), s.pid);
+  s.mfa_dtsmc = build_mfa_dtsmc(c.mfa_dtsmc(), s.mfa_dtsmc);
+  if (c.has_mfa_dtsmc_y()) s.mfa_dtsmc_y = build_mfa_dtsmc(c.mfa_dtsmc_y(), s.mfa_dtsmc);
+  s.mfac = build_mfac(c.mfac(), s.mfac);
+  if (c.has_mfac_y()) s.mfac_y = build_mfac(c.mfac_y(), s.mfac);
   if (c.pidccc().has_kp()) s.pidccc.kp = c.pidccc().kp();
   if (c.pidccc().has_ki()) s.pidccc.ki = c.pidccc().ki();
   if (c.pidccc().has_kd()) s.pidccc.kd = c.pidccc().kd();
@@ -321,6 +377,47 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   }
   if (t.ltcf_rotation()) s.local_frame_rate = control::LocalFrameRate::rotating;
   return s;
+}
+
+// spec.plant_axes as the plant catalog's per-axis overrides, in the group's axis order.
+std::vector<plant::AxisOverrides> build_plant_overrides(const netmc::v1::JobSpec& spec, std::size_t axis_count) {
+  constexpr int kMaxParameters = 32;
+  const auto names = axis_names(spec);
+  std::vector<plant::AxisOverrides> out(axis_count);
+  std::vector<bool> seen(axis_count, false);
+  for (int i = 0; i < spec.plant_axes_size(); ++i) {
+    const auto& a = spec.plant_axes(i);
+    const std::string field = "plant_axes[" + std::to_string(i) + "]";
+    const auto it = std::find(names.begin(), names.end(), a.axis());
+    if (it == names.end()) {
+      throw std::invalid_argument(field + ".axis: expected an axis of the job, got '" + a.axis().substr(0, 64) + "'");
+    }
+    const auto index = static_cast<std::size_t>(it - names.begin());
+    if (seen[index]) throw std::invalid_argument(field + ".axis: axis '" + a.axis() + "' is given twice");
+    seen[index] = true;
+    if (a.parameters_size() > kMaxParameters) {
+      throw std::invalid_argument(field + ".parameters: expected at most " + std::to_string(kMaxParameters));
+    }
+    for (const auto& p : a.parameters()) out[index].parameters.emplace_back(p.key(), p.value());
+    const auto& d = a.disturbance();
+    plant::Disturbance& disturbance = out[index].disturbance;
+    disturbance.constant = d.constant();
+    disturbance.step_amplitude = d.step().amplitude();
+    disturbance.step_time_s = d.step().on_s();
+    if (d.step().off_s() != 0.0) disturbance.step_off_s = d.step().off_s();
+    disturbance.sine_amplitude = d.sine().amplitude();
+    disturbance.sine_frequency_hz = d.sine().frequency_hz();
+    disturbance.sine_phase_rad = d.sine().phase_rad();
+    if (d.noise().stddev() != 0.0) {
+      if (!(d.noise().bandwidth_hz() > 0.0 && d.noise().bandwidth_hz() <= 1e5)) {
+        throw std::invalid_argument(field + ".disturbance.noise.bandwidth_hz: expected a number in (0, 1e5] Hz");
+      }
+      const std::uint64_t seed = d.noise().seed() != 0 ? d.noise().seed() : spec.seed() * 1000003ULL + index + 1;
+      disturbance.noise = plant::make_band_limited_noise(d.noise().stddev(), d.noise().bandwidth_hz(), seed);
+    }
+    plant::validate_disturbance(disturbance, field);
+  }
+  return out;
 }
 
 std::string format_seconds(double seconds) {
@@ -447,7 +544,8 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
     job.duration_s = spec.duration_s();
   }
   job.plant_name = spec.plant();
-  auto plants = in_field("plant", [&] { return plant::make_plant_set(spec.plant(), job.axis_count()); });
+  const auto overrides = build_plant_overrides(spec, job.axis_count());
+  auto plants = in_field("plant", [&] { return plant::make_plant_set(spec.plant(), job.axis_count(), overrides); });
   for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
   job.controller_name = spec.controller().name();
   job.controller = in_field("controller", [&] { return build_settings(spec.controller()); });

@@ -12,9 +12,10 @@ namespace {
 
 TEST(ContourErrorEstimators, ExactOnALine) {
   LineTrajectory line({{0.0, 0.0}, {0.03, 0.01}, 4.0});
-  const auto reference = line.sample(1.0);
+  auto reference = line.sample(1.0);
+  reference.time_s = 1.0;  // where the foot-point estimators start their search
   for (const auto& name : contour_error_estimator_names()) {
-    const auto estimator = make_contour_error_estimator(name);
+    const auto estimator = make_contour_error_estimator(name, std::make_shared<LineTrajectory>(line));
     for (const Eigen::Vector2d& offset : {Eigen::Vector2d(0.001, -0.002), Eigen::Vector2d(-0.0004, 0.0001)}) {
       const Eigen::Vector2d actual = reference.position + offset;
       EXPECT_NEAR(estimator->estimate(reference, actual).contour_error, line.contour_error(actual),
@@ -64,10 +65,11 @@ TEST(ContourErrorEstimators, CurvatureEstimateIsSecondOrderAccurateAlongTheTange
 
 TEST(ContourErrorEstimators, SignIsPositiveOutsideACounterClockwiseCircle) {
   CircleTrajectory circle({{0.0, 0.0}, 0.01, 8.0});
-  const auto reference = circle.sample(3.0);
+  auto reference = circle.sample(3.0);
+  reference.time_s = 3.0;
   const Eigen::Vector2d outward = reference.position.normalized();
   for (const auto& name : contour_error_estimator_names()) {
-    const auto estimator = make_contour_error_estimator(name);
+    const auto estimator = make_contour_error_estimator(name, std::make_shared<CircleTrajectory>(circle));
     EXPECT_GT(estimator->estimate(reference, reference.position + 1e-4 * outward).contour_error, 0.0);
     EXPECT_LT(estimator->estimate(reference, reference.position - 1e-4 * outward).contour_error, 0.0);
   }

@@ -215,3 +215,54 @@ TEST(JobBuilder, AxisNamesDefaultToXYAndAreChecked) {
 
 }  // namespace
 }  // namespace netmc::job
+
+namespace netmc::job {
+namespace {
+
+TEST(JobBuilder, PlantOverridesAndDisturbancesPerAxis) {
+  auto spec = parse_job_spec_json(R"({
+    "trajectory": {"heart": {"scale_m": 0.0025, "center_x_m": 0.075, "center_y_m": 0.075, "period_s": 10}},
+    "plant": "ballscrew",
+    "controller": {"name": "pid", "pid": {"kp": 100}, "pid_y": {"kp": 50}, "estimator": "steffensen"},
+    "sample_period_s": 0.001,
+    "plant_axes": [
+      {"axis": "y", "parameters": [{"key": "load_kg", "value": 3}],
+       "disturbance": {"step": {"amplitude": 0.8, "on_s": 2.2, "off_s": 5.2},
+                       "sine": {"amplitude": 0.1, "frequency_hz": 2}}}
+    ]
+  })", "test");
+  apply_defaults(spec);
+  const sim::ContourJob job = build_contour_job(spec);
+  EXPECT_NE(job.trajectory->describe().find("heart"), std::string::npos);
+  const std::string x = job.axes[0]->describe(), y = job.axes[1]->describe();
+  // paper 002's 3 kg load: J' = 0.8e-3 + 3 * 0.005^2 = 0.875e-3 kg m^2 (digest 3.7 [A])
+  EXPECT_NE(y.find("0.000875"), std::string::npos) << y;
+  EXPECT_EQ(x.find("0.000875"), std::string::npos) << x;
+  EXPECT_NE(y.find("step 0.8 from 2.2 s to 5.2 s"), std::string::npos) << y;
+  EXPECT_NE(x.find("d=none"), std::string::npos) << x;
+}
+
+TEST(JobBuilder, PlantOverrideErrorsNameTheField) {
+  auto with = [](const std::string& plant_axes) {
+    auto spec = valid_spec();
+    spec.set_plant("ballscrew");
+    auto parsed = parse_job_spec_json("{\"plant_axes\": " + plant_axes + "}", "test");
+    *spec.mutable_plant_axes() = parsed.plant_axes();
+    return error_of(spec);
+  };
+  EXPECT_NE(with(R"([{"axis": "w"}])").find("plant_axes[0].axis: expected an axis of the job"), std::string::npos);
+  EXPECT_NE(with(R"([{"axis": "x"}, {"axis": "x"}])").find("plant_axes[1].axis"), std::string::npos);
+  const std::string unknown = with(R"([{"axis": "x", "parameters": [{"key": "mass", "value": 1}]}])");
+  EXPECT_NE(unknown.find("ballscrew has no parameter 'mass' (expected one of: inertia_kg_m2"), std::string::npos)
+      << unknown;
+  EXPECT_NE(with(R"([{"axis": "x", "parameters": [{"key": "load_kg", "value": -1}]}])").find("load_kg must be >= 0"),
+            std::string::npos);
+  EXPECT_NE(with(R"([{"axis": "x", "disturbance": {"step": {"amplitude": 1, "on_s": 3, "off_s": 2}}}])")
+                .find("step_off_s"),
+            std::string::npos);
+  EXPECT_NE(with(R"([{"axis": "x", "disturbance": {"noise": {"stddev": 1}}}])").find("noise.bandwidth_hz"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace netmc::job

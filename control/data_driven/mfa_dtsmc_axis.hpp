@@ -1,0 +1,49 @@
+#pragma once
+// Paper 002's per-axis law C4, model-free adaptive discrete terminal sliding mode control with
+// contour coupling (eq. 16-25), implemented as the digest's law (3.3 [A]): the estimation errors
+// H and lambda(k) are unknown and taken as 0, eps(k+1) ~ eps(k), and
+//   e(k)   = y(k) - y_d(k) + delta eps(k)                                            (eq. 16)
+//   du_eq  = [ (E1 s - E2 sgn s)/lambda1 + (1 - beta) e(k) - (lambda2/lambda1) e(k)^alpha
+//              - Psi^ dd^(k) + y_d(k+1) - delta eps(k) - y(k) ] / Phi^                  (eq. 24)
+//   du_sw  = -lambda_s sgn s(k) / Phi^                                                 (eq. 25)
+//   u(k)   = u(k-1) + du_eq + du_sw
+// with Phi^, Psi^ and dd^ from DataModelEstimator (eq. 11-14).
+
+#include "control/data_driven/data_driven_axis_law.hpp"
+#include "control/data_driven/data_model_estimator.hpp"
+#include "control/data_driven/terminal_sliding_mode.hpp"
+
+namespace netmc::control {
+
+// Paper 002, sec. 5, C4 (digest 3.6); lengths in um (digest 3.7 [A]).
+struct MfaDtsmcGains {
+  DataModelEstimatorGains estimator;
+  TerminalSlidingModeGains sliding;
+  double switching_gain = 0.5;   // lambda_s
+  double contour_weight = 20.0;  // delta of eq. 16
+};
+
+class MfaDtsmcAxis final : public DataDrivenAxisLaw {
+ public:
+  MfaDtsmcAxis(const MfaDtsmcGains& gains, double sample_period_s);
+
+  void reset(double position) override;
+  double command(double position, double desired, double desired_next, double contour_error) override;
+  std::unique_ptr<DataDrivenAxisLaw> clone() const override;
+  std::string describe() const override;
+  std::size_t estimate_count() const override { return 5; }
+  NamedEstimate estimate(std::size_t index) const override;
+
+  const DataModelEstimator& data_model() const { return estimator_; }
+  double sliding_variable() const { return s_; }
+
+ private:
+  MfaDtsmcGains gains_;
+  DataModelEstimator estimator_;
+  TerminalSlidingMode sliding_;
+  double previous_position_ = 0.0, previous_error_ = 0.0;
+  double previous_command_ = 0.0, previous_increment_ = 0.0;
+  double s_ = 0.0;
+};
+
+}  // namespace netmc::control
