@@ -14,11 +14,13 @@
 
 #include "client/presets.hpp"
 #include "client/study_runner.hpp"
+#include "control/contour_error/contour_error_estimator.hpp"
 #include "control/trajectory/circle_trajectory.hpp"
 #include "control/controller_catalog.hpp"
 #include "control/trajectory/cubic_spline_curve.hpp"
 #include "control/trajectory/ellipse_trajectory.hpp"
 #include "control/trajectory/feed_rate_trajectory.hpp"
+#include "control/trajectory/heart_trajectory.hpp"
 #include "control/trajectory/lissajous_trajectory.hpp"
 #include "control/task_space/spatial_sarc.hpp"
 #include "control/task_space/task_frame.hpp"
@@ -59,6 +61,37 @@ void control_step(benchmark::State& state, const std::string& controller_name) {
     }
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+
+// One in-loop contour-error estimate on paper 002's heart (digest 3.7 [A]): the axis lags the
+// desired point by 10 ms along the path and sits 50 um off it, a fresh desired time each call
+// (2000 along the period). `netmc cee` explains the order: the cost follows curve evaluations.
+void contour_error_estimate(benchmark::State& state, const char* estimator_name) {
+  const auto heart = std::make_shared<netmc::control::HeartTrajectory>(netmc::control::HeartParameters{});
+  constexpr std::size_t kPoints = 2000;
+  std::vector<netmc::control::ReferencePoint> references(kPoints);
+  std::vector<Eigen::Vector2d> measured(kPoints);
+  for (std::size_t i = 0; i < kPoints; ++i) {
+    const double t = 0.02 + 9.9 * static_cast<double>(i) / kPoints;
+    references[i] = heart->sample(t);
+    references[i].time_s = t;
+    const auto lagging = heart->sample(t - 0.01);
+    const Eigen::Vector2d normal = Eigen::Vector2d(lagging.velocity.y(), -lagging.velocity.x()).normalized();
+    measured[i] = lagging.position + 5e-5 * normal;
+  }
+  const auto estimator = netmc::control::make_contour_error_estimator(estimator_name, heart);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    auto estimate = estimator->estimate(references[i], measured[i]);
+    benchmark::DoNotOptimize(estimate);
+    if (++i == kPoints) i = 0;
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+void BM_ContourErrorEstimate_Heart_Tangent(benchmark::State& state) { contour_error_estimate(state, "tangent"); }
+void BM_ContourErrorEstimate_Heart_Newton(benchmark::State& state) { contour_error_estimate(state, "newton"); }
+void BM_ContourErrorEstimate_Heart_Steffensen(benchmark::State& state) {
+  contour_error_estimate(state, "steffensen");
 }
 
 void BM_ControlStep_AdrcIlccc_TwoAxes(benchmark::State& state) { control_step(state, "adrc+ilccc"); }
@@ -202,6 +235,9 @@ void BM_ControlStep_SpatialSarc_ThreeAxes(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
 }
 
+BENCHMARK(BM_ContourErrorEstimate_Heart_Tangent);
+BENCHMARK(BM_ContourErrorEstimate_Heart_Newton);
+BENCHMARK(BM_ContourErrorEstimate_Heart_Steffensen);
 BENCHMARK(BM_ControlStep_AdrcIlccc_TwoAxes);
 BENCHMARK(BM_ControlStep_GtcfSarc);
 BENCHMARK(BM_ControlStep_LtcfSarc);

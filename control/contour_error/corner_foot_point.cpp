@@ -15,6 +15,7 @@ FootPoint corner_checked_foot_point(const ReferenceTrajectory& curve, const Eige
   const bool closed = (curve.sample(duration).position - curve.sample(0.0).position).norm() < 1e-9;
   const double local_time = best.time_s;
   int iterations = best.iterations;
+  int evaluations = best.evaluations + 2;  // the closed-curve check above
   for (const double corner : corners) {
     double offset = local_time - corner;
     if (closed) offset = std::remainder(offset, duration);  // a corner at 0 is also one at the end
@@ -23,9 +24,11 @@ FootPoint corner_checked_foot_point(const ReferenceTrajectory& curve, const Eige
     if (closed) mirror -= duration * std::floor(mirror / duration);
     const FootPoint other = method(curve, point, mirror, options.local);
     iterations += other.iterations;
+    evaluations += other.evaluations;
     if (other.distance_m < best.distance_m) best = other;
   }
   best.iterations = iterations;
+  best.evaluations = evaluations;
   return best;
 }
 

@@ -7,9 +7,9 @@
 namespace netmc::control {
 namespace {
 
-// The fixed-point map phi of paper 002 (eq. 41). At a cusp (C' = 0) it stays put.
-double phi(const ReferenceTrajectory& curve, const Eigen::Vector2d& point, double t) {
-  const ReferencePoint c = curve.sample(t);
+// The fixed-point map phi of paper 002 (eq. 41) from one evaluation c = C(t). At a cusp (C' = 0)
+// it stays put.
+double phi(const ReferencePoint& c, const Eigen::Vector2d& point, double t) {
   const double speed2 = c.velocity.squaredNorm();
   if (speed2 < 1e-18) return t;
   return t - (c.position - point).dot(c.velocity) / speed2;
@@ -19,44 +19,58 @@ double clamp_time(const ReferenceTrajectory& curve, double t) {
   return std::clamp(t, 0.0, curve.duration_s());
 }
 
-FootPoint finish(const ReferenceTrajectory& curve, const Eigen::Vector2d& point, double t, int iterations) {
-  return {t, (curve.sample(t).position - point).norm(), iterations};
+FootPoint at(const ReferencePoint& c, const Eigen::Vector2d& point, double t, int iterations, int evaluations) {
+  return {t, (c.position - point).norm(), iterations, evaluations, c.position, c.velocity};
 }
 
 }  // namespace
 
+// One curve evaluation per iteration. On convergence (the step phi(t) - t within tolerance) the
+// evaluation at t is the foot point's: the distance is stationary there, so stopping one step
+// short changes it by O(|C'|^2 tolerance^2 / distance), below 1e-18 m here.
 FootPoint newton_foot_point(const ReferenceTrajectory& curve, const Eigen::Vector2d& point,
                             double t0, const FootPointOptions& options) {
   double t = clamp_time(curve, t0);
-  int i = 0;
+  ReferencePoint c = curve.sample(t);
+  int i = 0, evaluations = 1;
   while (i < options.max_iterations) {
-    const double next = clamp_time(curve, phi(curve, point, t));
+    const double next = clamp_time(curve, phi(c, point, t));
     ++i;
-    const bool converged = std::abs(next - t) < options.tolerance_s;
+    if (std::abs(next - t) < options.tolerance_s) break;
     t = next;
-    if (converged) break;
+    c = curve.sample(t);
+    ++evaluations;
   }
-  return finish(curve, point, t, i);
+  return at(c, point, t, i, evaluations);
 }
 
+// Two curve evaluations per full iteration (phi(t) and phi(phi(t))), one for the last when phi(t)
+// already lands within tolerance: Steffensen is cheaper than Newton only where Newton needs more
+// than twice its iterations (README, "Contour-error estimation cost").
 FootPoint steffensen_foot_point(const ReferenceTrajectory& curve, const Eigen::Vector2d& point,
                                 double t0, const FootPointOptions& options) {
   double t = clamp_time(curve, t0);
-  int i = 0;
+  ReferencePoint c = curve.sample(t);
+  int i = 0, evaluations = 1;
   while (i < options.max_iterations) {
-    const double p1 = phi(curve, point, t);
-    const double p2 = phi(curve, point, p1);
-    const double denominator = p2 - 2.0 * p1 + t;
+    const double p1 = clamp_time(curve, phi(c, point, t));
     ++i;
+    if (std::abs(p1 - t) < options.tolerance_s) break;
+    const ReferencePoint c1 = curve.sample(p1);
+    ++evaluations;
+    const double p2 = clamp_time(curve, phi(c1, point, p1));
+    if (std::abs(p2 - p1) < options.tolerance_s) {  // converged at p1: no extrapolation needed
+      t = p1;
+      c = c1;
+      break;
+    }
+    const double denominator = p2 - 2.0 * p1 + t;
     // eq. 46; with a vanishing denominator the plain fixed-point step is taken (digest 3.7 [A]).
-    const double next = clamp_time(curve, std::abs(denominator) < 1e-15
-                                              ? p2
-                                              : t - (p1 - t) * (p1 - t) / denominator);
-    const bool converged = std::abs(next - t) < options.tolerance_s;
-    t = next;
-    if (converged) break;
+    t = clamp_time(curve, std::abs(denominator) < 1e-15 ? p2 : t - (p1 - t) * (p1 - t) / denominator);
+    c = curve.sample(t);
+    ++evaluations;
   }
-  return finish(curve, point, t, i);
+  return at(c, point, t, i, evaluations);
 }
 
 SampledContour sample_contour(const CurvePosition& position, double span, int samples) {

@@ -18,6 +18,10 @@ struct FootPoint {
   double time_s = 0.0;       // t*
   double distance_m = 0.0;   // |P - C(t*)|
   int iterations = 0;        // updates of t (the exact search reports 0)
+  int evaluations = 0;       // evaluations of the curve C(t), C'(t): what the time goes into
+  // C(t*) and C'(t*) where the local iterations evaluated them (zero from the exact search).
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
 };
 
 struct FootPointOptions {

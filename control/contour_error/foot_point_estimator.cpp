@@ -16,9 +16,8 @@ ContourErrorEstimate FootPointContourErrorEstimator::estimate(const ReferencePoi
   const FootPoint foot = method_ == FootPointMethod::newton
                              ? newton_foot_point(*trajectory_, measured, reference.time_s, options_)
                              : steffensen_foot_point(*trajectory_, measured, reference.time_s, options_);
-  const ReferencePoint at = trajectory_->sample(foot.time_s);
   // Direction of travel at the foot point; at a cusp (C' = 0) the reference's own.
-  Eigen::Vector2d tangent = at.velocity;
+  Eigen::Vector2d tangent = foot.velocity;
   if (tangent.norm() < 1e-12) tangent = reference.velocity;
   if (tangent.norm() < 1e-12) tangent = Eigen::Vector2d::UnitX();
   tangent.normalize();
@@ -26,7 +25,7 @@ ContourErrorEstimate FootPointContourErrorEstimator::estimate(const ReferencePoi
   ContourErrorEstimate estimate;
   estimate.cx = normal.x();
   estimate.cy = -normal.y();
-  estimate.contour_error = (measured - at.position).dot(normal);
+  estimate.contour_error = (measured - foot.position).dot(normal);
   estimate.iterations = foot.iterations;
   return estimate;
 }

@@ -20,15 +20,17 @@ HeartTrajectory::HeartTrajectory(const HeartParameters& parameters) : p_(paramet
 ReferencePoint HeartTrajectory::sample(double time_s) const {
   const double f = rate_ * time_s;
   const double s = std::sin(f), c = std::cos(f);
+  // The multiple angles from sin f and cos f alone (one sin/cos pair per sample instead of
+  // eight: the foot-point estimators evaluate the heart several times a cycle).
+  const double c2 = 2.0 * c * c - 1.0, s2 = 2.0 * s * c;
+  const double c3 = c * (2.0 * c2 - 1.0), s3 = s * (2.0 * c2 + 1.0);
+  const double c4 = 2.0 * c2 * c2 - 1.0, s4 = 2.0 * s2 * c2;
   const double w = rate_, k = p_.scale_m;
   ReferencePoint point;
-  point.position = p_.center + k * Eigen::Vector2d(16 * s * s * s, 13 * c - 5 * std::cos(2 * f) -
-                                                                       2 * std::cos(3 * f) - std::cos(4 * f));
-  point.velocity = k * w * Eigen::Vector2d(48 * s * s * c, -13 * s + 10 * std::sin(2 * f) +
-                                                               6 * std::sin(3 * f) + 4 * std::sin(4 * f));
-  point.acceleration = k * w * w * Eigen::Vector2d(48 * (2 * s * c * c - s * s * s),
-                                                   -13 * c + 20 * std::cos(2 * f) +
-                                                       18 * std::cos(3 * f) + 16 * std::cos(4 * f));
+  point.position = p_.center + k * Eigen::Vector2d(16 * s * s * s, 13 * c - 5 * c2 - 2 * c3 - c4);
+  point.velocity = k * w * Eigen::Vector2d(48 * s * s * c, -13 * s + 10 * s2 + 6 * s3 + 4 * s4);
+  point.acceleration =
+      k * w * w * Eigen::Vector2d(48 * (2 * s * c * c - s * s * s), -13 * c + 20 * c2 + 18 * c3 + 16 * c4);
   return point;
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "control/contour_error/contour_error_estimator.hpp"
+#include "control/contour_error/foot_point.hpp"
 #include "control/trajectory/circle_trajectory.hpp"
 #include "control/trajectory/heart_trajectory.hpp"
 #include "netsim/random_stream.hpp"
@@ -66,6 +67,35 @@ TEST(FootPointEstimator, NeedsTheTrajectoryAndANameItKnows) {
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("tangent, curvature, newton, steffensen"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace netmc::control
+
+namespace netmc::control {
+namespace {
+
+// The cost model `netmc cee` states: Newton one curve evaluation per iteration, Steffensen two
+// per full iteration and one for the last; both return the evaluation they stopped at.
+TEST(FootPointCost, EvaluationsFollowTheIterations) {
+  const HeartTrajectory heart{HeartParameters{}};
+  netsim::RandomStream random(5);
+  for (int i = 0; i < 200; ++i) {
+    const double t = 0.2 + 4.5 * random.uniform();
+    const auto lagging = heart.sample(t - 0.01);
+    const Eigen::Vector2d point = lagging.position + Eigen::Vector2d(3e-5, -2e-5);
+    const FootPoint newton = newton_foot_point(heart, point, t);
+    EXPECT_EQ(newton.evaluations, newton.iterations);
+    const FootPoint steffensen = steffensen_foot_point(heart, point, t);
+    EXPECT_GE(steffensen.evaluations, steffensen.iterations);
+    EXPECT_LE(steffensen.evaluations, 2 * steffensen.iterations);
+    // The position returned is C at the returned time, and the distance is to it.
+    for (const FootPoint& f : {newton, steffensen}) {
+      EXPECT_NEAR((heart.sample(f.time_s).position - f.position).norm(), 0.0, 1e-15);
+      EXPECT_NEAR(f.distance_m, (f.position - point).norm(), 1e-18);
+    }
+    EXPECT_NEAR(newton.distance_m, steffensen.distance_m, 1e-12);
   }
 }
 
