@@ -14,6 +14,7 @@
 #include "client/study_flags.hpp"
 #include "client/study_report.hpp"
 #include "client/study_runner.hpp"
+#include "plant/plant_catalog.hpp"
 #include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
@@ -27,6 +28,7 @@ std::function<int()> add_sim_command(CLI::App& app) {
     unsigned threads = 0;
     bool print_spec = false;
     bool list_presets = false;
+    std::string plant_parameters;
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* sim = app.add_subcommand("sim", "Run a study in-process, in virtual time (default: --preset seed001)");
@@ -42,6 +44,9 @@ std::function<int()> add_sim_command(CLI::App& app) {
   sim->add_flag("--print-spec", flags->print_spec,
                 "Print the job spec of the study's first run as JSON (what --spec reads) and run nothing");
   sim->add_flag("--list-presets", flags->list_presets, "Print the names of the presets and run nothing");
+  sim->add_option("--plant-parameters", flags->plant_parameters,
+                  "Print the parameters --plant NAME:KEY=VALUE (and a spec's plant_axes) can change, and run nothing")
+      ->type_name("NAME");
   sim->footer(R"(Examples:
   netmc sim                                        # paper 001's study (Table 1) and its table
   netmc sim --plot figures                         # ... plus figures/contour.png, contour_error,
@@ -55,6 +60,13 @@ Values are SI unless suffixed (s, ms, us, m, mm, um). Flags override the preset 
 every run. Output files are written whole, after every run has finished.)");
 
   return [flags]() -> int {
+    if (!flags->plant_parameters.empty()) {
+      const std::string& name = flags->plant_parameters;
+      const auto parameters = plant::plant_parameters(name);  // throws naming the known plants
+      fmt::print("{} (input and disturbances in {}):\n", name, plant::plant_input_unit(name));
+      for (const auto& p : parameters) fmt::print("  {:<28} {}\n", p.key, p.description);
+      return 0;
+    }
     if (flags->list_presets) {
       for (const auto& name : preset_names()) fmt::print("{}\n", name);
       return 0;

@@ -1,11 +1,14 @@
 #include "client/spec_syntax.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <map>
 #include <optional>
 #include <stdexcept>
 #include <vector>
+
+#include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
 namespace {
@@ -459,6 +462,93 @@ void parse_pid_gains(std::string_view text, netmc::v1::PidGains& gains, std::str
     if (key == "kp") gains.set_kp(number);
     if (key == "ki") gains.set_ki(number);
     if (key == "kd") gains.set_kd(number);
+  }
+}
+
+namespace {
+
+// The job's settings for `axis`, added when it has none yet.
+netmc::v1::PlantAxisSettings& plant_axis(netmc::v1::JobSpec& job, const std::string& axis) {
+  for (auto& settings : *job.mutable_plant_axes()) {
+    if (settings.axis() == axis) return settings;
+  }
+  auto& settings = *job.add_plant_axes();
+  settings.set_axis(axis);
+  return settings;
+}
+
+// An axis of the job, or a message naming the flag and the job's axes.
+std::string job_axis(const netmc::v1::JobSpec& job, std::string_view axis, std::string_view flag) {
+  const auto names = job::axis_names(job);
+  if (std::find(names.begin(), names.end(), axis) == names.end()) {
+    std::string expected;
+    for (const auto& name : names) expected += (expected.empty() ? "" : ", ") + name;
+    throw std::invalid_argument(std::string(flag) + ": unknown axis '" + std::string(axis.substr(0, 64)) +
+                                "' (expected one of: " + expected + ")");
+  }
+  return std::string(axis);
+}
+
+}  // namespace
+
+void parse_plant(std::string_view text, netmc::v1::JobSpec& job) {
+  const std::size_t colon = text.find(':');
+  const std::string name(trim(text.substr(0, colon)));
+  if (name.empty()) throw std::invalid_argument("--plant: expected NAME[:KEY=VALUE,...], got '" + std::string(text) + "'");
+  job.set_plant(name);
+  if (colon == std::string_view::npos) return;
+  for (const auto& item : split_list(std::string(text.substr(colon + 1)))) {
+    const std::size_t equals = item.find('=');
+    if (equals == std::string::npos || equals == 0) {
+      throw std::invalid_argument("--plant: expected [AXIS.]KEY=VALUE, got '" + item + "'");
+    }
+    const std::string target = item.substr(0, equals);
+    const double value = parse_quantity(item.substr(equals + 1), Quantity::plain, "--plant " + target);
+    const std::size_t dot = target.find('.');
+    std::vector<std::string> axes;
+    if (dot == std::string::npos) {
+      axes = job::axis_names(job);
+    } else {
+      axes.push_back(job_axis(job, target.substr(0, dot), "--plant"));
+    }
+    const std::string key = dot == std::string::npos ? target : target.substr(dot + 1);
+    for (const auto& axis : axes) {
+      auto& parameter = *plant_axis(job, axis).add_parameters();
+      parameter.set_key(key);
+      parameter.set_value(value);
+    }
+  }
+}
+
+void parse_disturbance(std::string_view text, netmc::v1::JobSpec& job) {
+  const std::size_t colon = text.find(':');
+  if (colon == std::string_view::npos) {
+    throw std::invalid_argument("--disturbance: expected AXIS:step=..,on=..,off=.. | sine=..,hz=.. | noise=..,band=.. "
+                                "| constant=.., got '" + std::string(text) + "'");
+  }
+  const std::string axis = job_axis(job, trim(text.substr(0, colon)), "--disturbance");
+  const auto keys = parse_keys(text.substr(colon + 1), "--disturbance",
+                               {"constant", "step", "on", "off", "sine", "hz", "phase", "noise", "band", "seed"});
+  auto& d = *plant_axis(job, axis).mutable_disturbance();
+  for (const auto& [key, value] : keys) {
+    const std::string field = "--disturbance " + key;
+    const bool is_time = key == "on" || key == "off";
+    const double number = parse_quantity(value, is_time ? Quantity::time : Quantity::plain, field);
+    if (key == "constant") d.set_constant(number);
+    if (key == "step") d.mutable_step()->set_amplitude(number);
+    if (key == "on") d.mutable_step()->set_on_s(number);
+    if (key == "off") d.mutable_step()->set_off_s(number);
+    if (key == "sine") d.mutable_sine()->set_amplitude(number);
+    if (key == "hz") d.mutable_sine()->set_frequency_hz(number);
+    if (key == "phase") d.mutable_sine()->set_phase_rad(number);
+    if (key == "noise") d.mutable_noise()->set_stddev(number);
+    if (key == "band") d.mutable_noise()->set_bandwidth_hz(number);
+    if (key == "seed") {
+      if (!(number >= 1.0 && number <= 9.0e15 && number == std::floor(number))) {
+        throw std::invalid_argument("--disturbance seed: expected a whole number in [1, 9e15]");
+      }
+      d.mutable_noise()->set_seed(static_cast<std::uint64_t>(number));
+    }
   }
 }
 

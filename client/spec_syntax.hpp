@@ -48,5 +48,11 @@ void parse_task_space_gains(std::string_view text, netmc::v1::TaskSpaceGains& ga
 netmc::v1::Position parse_position(std::string_view text, std::string_view flag);
 // --pidccc / --pid kp=..,ki=..,kd=..
 void parse_pid_gains(std::string_view text, netmc::v1::PidGains& gains, std::string_view flag);
+// --plant NAME[:[AXIS.]KEY=VALUE,...]: the plant, and parameter overrides for every axis of `job`
+// (KEY=VALUE) or for one (AXIS.KEY=VALUE), appended to job.plant_axes in order.
+void parse_plant(std::string_view text, netmc::v1::JobSpec& job);
+// --disturbance AXIS:constant=..,step=..,on=..,off=..,sine=..,hz=..,phase=..,noise=..,band=..,seed=..
+// (amplitudes in the plant's input unit): the disturbance of one axis of `job`.
+void parse_disturbance(std::string_view text, netmc::v1::JobSpec& job);
 
 }  // namespace netmc::cli

@@ -35,7 +35,7 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
   const bool changes_setup = !f.trajectory.empty() || !f.plant.empty() || !f.delay.empty() ||
                              !f.uplink_delay.empty() || !f.loss.empty() || !f.uplink_loss.empty() ||
                              !f.sample_period.empty() || !f.duration.empty() || !f.sensor.empty() ||
-                             !f.initial_position.empty();
+                             !f.initial_position.empty() || !f.disturbances.empty();
   if (changes_setup) {
     plan.paper.clear();
     plan.title = "custom study (based on " + (f.spec_file.empty() ? "preset " + (f.preset.empty() ? std::string("seed001") : f.preset) : f.spec_file) + ")";
@@ -56,7 +56,11 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
 
   for (auto& job : plan.jobs) {
     if (!f.trajectory.empty()) *job.mutable_trajectory() = parse_trajectory(f.trajectory);
-    if (!f.plant.empty()) job.set_plant(f.plant);
+    if (!f.plant.empty()) {
+      job.clear_plant_axes();  // overrides belong to the plant they were written for
+      parse_plant(f.plant, job);
+    }
+    for (const auto& disturbance : f.disturbances) parse_disturbance(disturbance, job);
     if (!f.delay.empty()) *job.mutable_downlink()->mutable_delay() = parse_delay(f.delay, "--delay");
     if (!f.uplink_delay.empty()) {
       *job.mutable_uplink()->mutable_delay() = parse_delay(f.uplink_delay, "--uplink-delay");
@@ -176,7 +180,16 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
 }
 
 void add_job_override_flags(CLI::App* app, StudyFlags& flags) {
-  app->add_option("--plant", flags.plant, "seed001 | ballscrew | linmotor | stage004");
+  app->add_option("--plant", flags.plant,
+                  "seed001 | ballscrew | linmotor | stage004, with parameter overrides for every axis or one: "
+                  "ballscrew:load_kg=3 | ballscrew:y.load_kg=3,x.damping_n_m_s_rad=0.3 "
+                  "(netmc sim --plant-parameters NAME lists the keys)")
+      ->type_name("NAME[:[AXIS.]KEY=VALUE,...]");
+  app->add_option("--disturbance", flags.disturbances,
+                  "Additive disturbance on one axis in the plant's input unit (V, N or m/s^2), repeatable: "
+                  "y:step=0.8,on=2.2s,off=5.2s | x:sine=0.2,hz=2[,phase=RAD] | x:noise=0.05,band=50[,seed=N] "
+                  "| x:constant=0.1 (parts add up)")
+      ->type_name("AXIS:PART=..,...");
   app->add_option("--uplink-delay", flags.uplink_delay, "Sensor->controller delay (same forms as --delay)");
   app->add_option("--loss", flags.loss, "Setpoint loss: none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]");
   app->add_option("--uplink-loss", flags.uplink_loss, "Feedback loss (same forms as --loss)");

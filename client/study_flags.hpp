@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
 
 #include "client/presets.hpp"
 
@@ -19,6 +20,7 @@ struct StudyFlags {
       initial_position;
   int iterations = 0;
   long long seed = -1;
+  std::vector<std::string> disturbances;  // --disturbance, one per axis
   std::string clock;
   std::string axes;
   std::string json_path;

@@ -4,6 +4,7 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 
 #include "netsim/random_stream.hpp"
 #include "plant/parameter_checks.hpp"
@@ -53,7 +54,10 @@ void validate_disturbance(const Disturbance& d, std::string_view owner) {
     require_finite(owner, "disturbance.step_off_s", d.step_off_s);
   }
   if (!(d.step_off_s > d.step_time_s)) {
-    require_positive(owner, "disturbance.step_off_s - disturbance.step_time_s", d.step_off_s - d.step_time_s);
+    std::ostringstream message;
+    message << owner << ": disturbance.step_off_s must be after disturbance.step_time_s (got on " << d.step_time_s
+            << " s, off " << d.step_off_s << " s)";
+    throw std::invalid_argument(message.str());
   }
   require_non_negative(owner, "disturbance.noise.stddev", d.noise.stddev);
   if (d.noise.stddev > 0.0) require_positive(owner, "disturbance.noise.bandwidth_hz", d.noise.bandwidth_hz);

@@ -77,6 +77,10 @@ void for_each_smooth_piece(const Disturbance& d, double t0, double duration, Pie
   int count = 0;
   if (inside(d.step_time_s)) cuts[count++] = d.step_time_s;
   if (inside(d.step_off_s)) cuts[count++] = d.step_off_s;
+  if (count == 0) {  // the held interval as given: no rounding of t0 + duration - t0
+    piece(t0, duration, level_at(t0 + 0.5 * duration));
+    return;
+  }
   double start = t0;
   for (int i = 0; i <= count; ++i) {
     const double end = i < count ? cuts[i] : t1;

@@ -420,6 +420,18 @@ std::vector<plant::AxisOverrides> build_plant_overrides(const netmc::v1::JobSpec
   return out;
 }
 
+// " (y: load_kg=3, disturbance)" for the axes a spec changes; empty when it changes none.
+std::string describe_plant_axes(const netmc::v1::JobSpec& spec) {
+  std::string out;
+  for (const auto& a : spec.plant_axes()) {
+    std::string parts;
+    for (const auto& p : a.parameters()) parts += (parts.empty() ? "" : ", ") + p.key() + "=" + fmt::format("{:g}", p.value());
+    if (a.has_disturbance()) parts += std::string(parts.empty() ? "" : ", ") + "disturbance";
+    if (!parts.empty()) out += (out.empty() ? "" : "; ") + a.axis() + ": " + parts;
+  }
+  return out.empty() ? out : " (" + out + ")";
+}
+
 std::string format_seconds(double seconds) {
   std::ostringstream text;
   if (seconds >= 1.0 || seconds == 0.0) {
@@ -674,7 +686,7 @@ netmc::v1::RunResult describe_run(const netmc::v1::JobSpec& spec,
   netmc::v1::RunResult result;
   result.set_controller(spec.controller().name());
   result.set_label(spec.name().empty() ? spec.controller().name() : spec.name());
-  result.set_plant(spec.plant());
+  result.set_plant(spec.plant() + describe_plant_axes(spec));
   // The reference is built once: for its description and the period the window is counted in.
   double reference_period_s = 0.0;
   if (is_spatial_job(spec)) {

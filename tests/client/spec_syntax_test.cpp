@@ -200,3 +200,47 @@ TEST(SpecSyntax, TaskSpaceAndInitialPosition) {
 
 }  // namespace
 }  // namespace netmc::cli
+
+namespace netmc::cli {
+namespace {
+
+TEST(SpecSyntax, PlantOverridesForEveryAxisOrOne) {
+  netmc::v1::JobSpec job;
+  parse_plant("ballscrew:load_kg=3,y.damping_n_m_s_rad=0.3", job);
+  EXPECT_EQ(job.plant(), "ballscrew");
+  ASSERT_EQ(job.plant_axes_size(), 2);
+  EXPECT_EQ(job.plant_axes(0).axis(), "x");
+  ASSERT_EQ(job.plant_axes(0).parameters_size(), 1);
+  EXPECT_EQ(job.plant_axes(0).parameters(0).key(), "load_kg");
+  EXPECT_EQ(job.plant_axes(0).parameters(0).value(), 3.0);
+  ASSERT_EQ(job.plant_axes(1).parameters_size(), 2);  // in the order given
+  EXPECT_EQ(job.plant_axes(1).parameters(1).key(), "damping_n_m_s_rad");
+  EXPECT_EQ(job.plant_axes(1).parameters(1).value(), 0.3);
+  netmc::v1::JobSpec plain;
+  parse_plant("linmotor", plain);
+  EXPECT_EQ(plain.plant(), "linmotor");
+  EXPECT_EQ(plain.plant_axes_size(), 0);
+  EXPECT_THROW(parse_plant("ballscrew:w.load_kg=1", plain), std::invalid_argument);
+  EXPECT_THROW(parse_plant("ballscrew:load_kg", plain), std::invalid_argument);
+  EXPECT_THROW(parse_plant(":load_kg=1", plain), std::invalid_argument);
+}
+
+TEST(SpecSyntax, DisturbancePartsOnOneAxis) {
+  netmc::v1::JobSpec job;
+  parse_disturbance("y:step=0.8,on=2.2s,off=5200ms,sine=0.1,hz=2,noise=0.05,band=50,seed=7", job);
+  ASSERT_EQ(job.plant_axes_size(), 1);
+  const auto& d = job.plant_axes(0).disturbance();
+  EXPECT_EQ(job.plant_axes(0).axis(), "y");
+  EXPECT_EQ(d.step().amplitude(), 0.8);
+  EXPECT_DOUBLE_EQ(d.step().on_s(), 2.2);
+  EXPECT_DOUBLE_EQ(d.step().off_s(), 5.2);
+  EXPECT_EQ(d.sine().frequency_hz(), 2.0);
+  EXPECT_EQ(d.noise().bandwidth_hz(), 50.0);
+  EXPECT_EQ(d.noise().seed(), 7u);
+  EXPECT_THROW(parse_disturbance("step=1", job), std::invalid_argument);       // no axis
+  EXPECT_THROW(parse_disturbance("x:ramp=1", job), std::invalid_argument);     // unknown part
+  EXPECT_THROW(parse_disturbance("x:noise=1,seed=0.5", job), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace netmc::cli

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -151,6 +153,43 @@ TEST(BallScrewDrive, CloneAndDescribe) {
   EXPECT_EQ(copy->velocity(), drive.velocity());
   EXPECT_EQ(copy->time(), drive.time());
   EXPECT_NE(drive.describe().find("J=0.0008"), std::string::npos) << drive.describe();
+}
+
+}  // namespace
+}  // namespace netmc::plant
+
+namespace netmc::plant {
+namespace {
+
+// A step that switches off is the difference of two steps that stay on (the drive is linear):
+// independent of how the integrator splits the interval at the switches.
+TEST(BallScrewDrive, StepOnAndOffIsTheDifferenceOfTwoSteps) {
+  auto run = [](double amplitude, double on, double off) {
+    BallScrewParameters p;
+    p.disturbance.step_amplitude = amplitude;
+    p.disturbance.step_time_s = on;
+    p.disturbance.step_off_s = off;
+    BallScrewDrive drive(p);
+    drive.reset(0.0, 0.0);
+    std::vector<double> positions;
+    for (int k = 0; k < 800; ++k) {
+      drive.advance(0.01, 0.3);
+      positions.push_back(drive.position());
+    }
+    return positions;
+  };
+  const double infinity = std::numeric_limits<double>::infinity();
+  const auto window = run(0.8, 2.2, 5.2);
+  const auto from_on = run(0.8, 2.2, infinity);
+  const auto from_off = run(0.8, 5.2, infinity);
+  const auto without = run(0.0, 0.0, infinity);
+  double largest_effect = 0.0;
+  for (std::size_t k = 0; k < window.size(); ++k) {
+    EXPECT_NEAR(window[k], without[k] + (from_on[k] - without[k]) - (from_off[k] - without[k]), 1e-12) << k;
+    largest_effect = std::max(largest_effect, std::abs(window[k] - without[k]));
+  }
+  EXPECT_GT(largest_effect, 0.1);  // the step moved the axis by more than 10 cm: the test has teeth
+  EXPECT_EQ(window[210], without[210]);  // before the step (t = 2.11 s) nothing differs
 }
 
 }  // namespace
