@@ -341,9 +341,72 @@ SimOutputs load_sim_outputs(const std::string& dir) {
   return outputs;
 }
 
+namespace {
+
+// The controller-estimate columns of a trace: those after tau_x_s, named NAME[UNIT].
+struct EstimateColumn {
+  std::size_t column;
+  std::string name, unit;
+};
+std::vector<EstimateColumn> estimate_columns(const CsvTable& table) {
+  std::vector<EstimateColumn> out;
+  if (!table.has_column("tau_x_s")) return out;
+  const auto& header = table.header();
+  for (std::size_t c = table.column("tau_x_s") + 1; c < header.size(); ++c) {
+    const std::string& h = header[c];
+    const std::size_t open = h.find('[');
+    if (open == std::string::npos || h.back() != ']') continue;
+    out.push_back({c, h.substr(0, open), h.substr(open + 1, h.size() - open - 2)});
+  }
+  return out;
+}
+
+// Each adaptive controller's estimates over time, one panel per estimate (the thesis's
+// Figs. 3-10 to 3-13): one figure per run that has any.
+std::vector<Figure> estimate_figures(const SimOutputs& outputs, const std::string& data_dir) {
+  constexpr std::size_t kMaxPoints = 4000;  // per series: enough for the eye, small files
+  std::vector<Figure> figures;
+  for (std::size_t i = 0; i < outputs.traces.size(); ++i) {
+    const auto& table = outputs.traces[i].table;
+    const auto columns = estimate_columns(table);
+    if (columns.empty() || table.rows() == 0) continue;
+    const std::size_t time = table.column("time_s");
+    const std::size_t stride = std::max<std::size_t>(1, table.rows() / kMaxPoints);
+    Figure figure;
+    figure.name = fmt::format("estimates-{}", i + 1);
+    const std::size_t n = columns.size();
+    const std::size_t layout_columns = n > 4 ? 2 : 1;
+    const std::size_t layout_rows = (n + layout_columns - 1) / layout_columns;
+    figure.width_px = layout_columns == 2 ? 1300 : 1000;
+    figure.height_px = static_cast<int>(layout_rows) * 170 + 110;
+    std::string body = std::string(kStyle) + fmt::format(
+        "set multiplot layout {},{} title '{}: controller estimates (last iteration)' font ',13'\n"
+        "set key off\nset format y '%g'\nset xlabel 'time [s]'\n",
+        layout_rows, layout_columns, gnuplot_text(outputs.traces[i].label));
+    for (std::size_t e = 0; e < n; ++e) {
+      std::string dat = "# time_s value\n";
+      for (std::size_t r = 0; r < table.rows(); r += stride) {
+        dat += fmt::format("{:.6f} {:.9g}\n", table.number(r, time), table.number(r, columns[e].column));
+      }
+      const std::string path = data_path(data_dir, fmt::format("estimates-{}-{}.dat", i + 1, e + 1));
+      write_file_atomically(path, dat);
+      body += fmt::format("set ylabel '{} [{}]'\nplot {} using 1:2 with lines ls {}\n", gnuplot_text(columns[e].name),
+                          gnuplot_text(columns[e].unit), gnuplot_quote(in_script(path)), line_style(e));
+    }
+    body += "unset multiplot\n";
+    figure.body = body;
+    figures.push_back(figure);
+  }
+  return figures;
+}
+
+}  // namespace
+
 std::vector<Figure> sim_figures(const SimOutputs& outputs, const std::string& data_dir) {
-  return {contour_figure(outputs, data_dir), contour_error_figure(outputs, data_dir),
-          e_sum_figure(outputs, data_dir), tau_figure(outputs, data_dir)};
+  std::vector<Figure> figures{contour_figure(outputs, data_dir), contour_error_figure(outputs, data_dir),
+                              e_sum_figure(outputs, data_dir), tau_figure(outputs, data_dir)};
+  for (auto& figure : estimate_figures(outputs, data_dir)) figures.push_back(std::move(figure));
+  return figures;
 }
 
 std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::string>& metrics,

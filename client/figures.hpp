@@ -2,7 +2,7 @@
 // The standard figures of netmc, as gnuplot Figures plus the data files they read:
 //  - from a sim run's saved outputs (results.json + traces/N-LABEL.csv): desired vs actual
 //    contour with a zoom panel, contour error vs time per run, e_sum vs iteration (log y),
-//    histogram of the loop delay tau;
+//    histogram of the loop delay tau, and each adaptive controller's estimates vs time;
 //  - from a sweep's CSV: a metric vs the delay's upper bound, mean over seeds with the
 //    min-max band, one line per run.
 

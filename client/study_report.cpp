@@ -4,6 +4,7 @@
 #include <fmt/ostream.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 
 #include <unistd.h>
 
+#include "plant/plant_catalog.hpp"
 #include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
@@ -35,17 +37,37 @@ const PaperRow* paper_row(const StudyPlan& plan, const netmc::v1::RunResult& run
 
 namespace {
 
-// Studies judged after the start-up transient (thesis): steady RMS and max in um, inputs in V.
+bool trajectories_differ(const std::vector<RunOutcome>& outcomes) {
+  return std::any_of(outcomes.begin(), outcomes.end(), [&](const RunOutcome& o) {
+    return o.result.trajectory() != outcomes.front().result.trajectory();
+  });
+}
+
+// The first run on the same trajectory as `outcome`: what its rms/first compares with.
+const RunOutcome& first_on_trajectory(const std::vector<RunOutcome>& outcomes, const RunOutcome& outcome) {
+  return *std::find_if(outcomes.begin(), outcomes.end(), [&](const RunOutcome& o) {
+    return o.result.trajectory() == outcome.result.trajectory();
+  });
+}
+
+// A paper value in um, or "-" where the paper gives none (NaN).
+std::string paper_micrometres(double metres) {
+  return std::isfinite(metres) ? fmt::format("{:.2f}", metres * 1e6) : std::string("-");
+}
+
+// Studies judged after the start-up transient (thesis): steady RMS and max in um, inputs in the
+// plant's unit.
 void print_steady_table(std::ostream& out, const StudyPlan& plan,
                         const std::vector<RunOutcome>& outcomes) {
   std::size_t width = 18;
   for (const auto& outcome : outcomes) width = std::max(width, outcome.result.label().size());
+  const std::string unit = plant::plant_input_unit(outcomes.front().result.plant());
   fmt::print(out, "{:<{}} {:>17} {:>17} {:>10}  {:>11} {:>11}  {:>16} {:>16}\n", "run", width,
-             "e_rms_steady [um]", "e_max_steady [um]", "rms/first", "u_x rms [V]", "u_y rms [V]",
-             "paper rms [um]", "paper max [um]");
-  const auto& first = last(outcomes.front());
+             "e_rms_steady [um]", "e_max_steady [um]", "rms/first", "u_x rms [" + unit + "]",
+             "u_y rms [" + unit + "]", "paper rms [um]", "paper max [um]");
   for (const auto& outcome : outcomes) {
     const auto& m = last(outcome);
+    const auto& first = last(first_on_trajectory(outcomes, outcome));
     if (m.diverged()) {
       fmt::print(out, "{:<{}} unstable at t = {:.3f} s\n", outcome.result.label(), width, m.diverged_at_s());
       continue;
@@ -59,9 +81,16 @@ void print_steady_table(std::ostream& out, const StudyPlan& plan,
                m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6,
                first.e_rms_steady_m() > 0.0 ? m.e_rms_steady_m() / first.e_rms_steady_m() : std::numeric_limits<double>::quiet_NaN(), m.command_rms_steady(0), m.command_rms_steady(1));
     if (const PaperRow* row = paper_row(plan, outcome.result)) {
-      fmt::print(out, "  {:>16.2f} {:>16.2f}", row->e_max_m * 1e6, row->e_sum_m * 1e6);
+      fmt::print(out, "  {:>16} {:>16}", paper_micrometres(row->e_max_m), paper_micrometres(row->e_sum_m));
     }
     fmt::print(out, "\n");
+  }
+  if (trajectories_differ(outcomes)) {
+    fmt::print(out, "\nrms/first: against the first run on the same trajectory; trajectories:\n");
+    for (const auto& outcome : outcomes) {
+      if (&first_on_trajectory(outcomes, outcome) != &outcome) continue;
+      fmt::print(out, "  from {}: {}\n", outcome.result.label(), outcome.result.trajectory());
+    }
   }
 }
 
@@ -111,7 +140,8 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
     const auto& first = outcomes.front().result;
     const bool sweep = delays_differ(outcomes);
     fmt::print(out, "{}\ntrajectory {} | plant {} | delay {} | h = {:.6g} ms | seed {}\n\n", plan.title,
-               first.trajectory(), first.plant(), sweep ? "by column" : first.delay(),
+               !sweep && trajectories_differ(outcomes) ? std::string("by run (below)") : first.trajectory(), first.plant(),
+               sweep ? "by column" : first.delay(),
                first.sample_period_s() * 1e3, first.seed());
     if (sweep) {
       print_steady_sweep(out, outcomes);
@@ -179,7 +209,8 @@ std::string study_json(const std::vector<RunOutcome>& outcomes) {
   return job::to_json(study);
 }
 
-std::string trace_csv(const std::vector<sim::CycleTrace>& trace) {
+std::string trace_csv(const std::vector<sim::CycleTrace>& trace,
+                      const std::vector<control::EstimateName>& estimate_names) {
   // Columns per axis of the group, named by the contour's coordinates x, y (, z).
   const std::size_t axes = trace.empty() ? 2 : static_cast<std::size_t>(trace.front().position_m.size());
   const auto columns = [&](const char* prefix, const char* suffix) {
@@ -191,7 +222,12 @@ std::string trace_csv(const std::vector<sim::CycleTrace>& trace) {
   };
   std::string csv = "time_s" + columns("", "_ref_m") + columns("", "_m") + columns("", "_measured_m") +
                     ",contour_error_m,contour_error_estimate_m" + columns("u", "") + columns("U", "") +
-                    ",ue,tau_x_s\n";
+                    ",ue,tau_x_s";
+  const std::size_t estimates = std::min(estimate_names.size(), control::kMaxControllerEstimates);
+  for (std::size_t i = 0; i < estimates; ++i) {
+    csv += fmt::format(",{}[{}]", estimate_names[i].name, estimate_names[i].unit);
+  }
+  csv += '\n';
   const auto values = [&](const control::AxisVector& v, const char* format) {
     for (std::size_t i = 0; i < axes; ++i) {
       csv += ',';
@@ -206,7 +242,9 @@ std::string trace_csv(const std::vector<sim::CycleTrace>& trace) {
     csv += fmt::format(",{:.6e},{:.6e}", row.contour_error_m, row.contour_error_estimate_m);
     values(row.axis_command, "{:.6e}");
     values(row.command, "{:.6e}");
-    csv += fmt::format(",{:.6e},{:.6e}\n", row.coupling_command, row.tau_s);
+    csv += fmt::format(",{:.6e},{:.6e}", row.coupling_command, row.tau_s);
+    for (std::size_t i = 0; i < estimates; ++i) csv += fmt::format(",{:.9e}", row.estimates[i]);
+    csv += '\n';
   }
   return csv;
 }
@@ -269,7 +307,7 @@ void write_trace_directory(const std::string& directory, const std::vector<RunOu
   }
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     write_file_atomically((std::filesystem::path(directory) / trace_file_name(i, outcomes[i].result.label())).string(),
-                          trace_csv(outcomes[i].last_trace));
+                          trace_csv(outcomes[i].last_trace, outcomes[i].estimate_names));
   }
 }
 

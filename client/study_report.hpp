@@ -17,7 +17,10 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
 void print_learning_curve(std::ostream& out, const std::vector<RunOutcome>& outcomes);
 
 std::string study_json(const std::vector<RunOutcome>& outcomes);
-std::string trace_csv(const std::vector<sim::CycleTrace>& trace);
+// Columns: time, per-axis reference/position/measurement, contour errors, commands, loop delay,
+// then one column per controller estimate, named NAME[UNIT] (e.g. M1_hat[V/(m/s^2)]).
+std::string trace_csv(const std::vector<sim::CycleTrace>& trace,
+                      const std::vector<control::EstimateName>& estimate_names = {});
 
 // Before a long run: throws std::invalid_argument("<flag>: ...") when `path` cannot be
 // created because its directory is missing or not writable.

@@ -33,7 +33,10 @@ std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_
         out.result = job::describe_run(spec, runner.controller_description());
         runner.run_all([&](const sim::IterationRecord& record) {
           *out.result.add_iterations() = job::to_proto(record.metrics);
-          if (record_traces) out.last_trace = record.trace;
+          if (record_traces) {
+            out.last_trace = record.trace;
+            out.estimate_names = record.metrics.estimate_names;
+          }
           if (on_iteration) on_iteration();
         });
       } catch (...) {

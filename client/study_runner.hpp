@@ -12,6 +12,7 @@ namespace netmc::cli {
 struct RunOutcome {
   netmc::v1::RunResult result;
   std::vector<sim::CycleTrace> last_trace;   // per-cycle trace of the last iteration (if asked)
+  std::vector<control::EstimateName> estimate_names;  // the trace's controller estimates
 };
 
 // Builds every job first, so a bad spec fails before anything runs (std::invalid_argument).

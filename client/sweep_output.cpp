@@ -72,7 +72,10 @@ const std::vector<const FieldDescriptor*>& metric_fields() {
   static const std::vector<const FieldDescriptor*> fields = [] {
     std::vector<const FieldDescriptor*> out;
     const auto* descriptor = netmc::v1::IterationMetrics::descriptor();
-    for (int i = 0; i < descriptor->field_count(); ++i) out.push_back(descriptor->field(i));
+    // Scalars and per-axis lists; the controller's estimates (messages) are in the JSON only.
+    for (int i = 0; i < descriptor->field_count(); ++i) {
+      if (descriptor->field(i)->cpp_type() != FieldDescriptor::CPPTYPE_MESSAGE) out.push_back(descriptor->field(i));
+    }
     return out;
   }();
   return fields;

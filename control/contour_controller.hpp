@@ -6,8 +6,10 @@
 #include <Eigen/Dense>
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "control/contour_error/contour_error_estimator.hpp"
+#include "control/controller_estimate.hpp"
 #include "control/trajectory/reference_trajectory.hpp"
 
 namespace netmc::control {
@@ -29,6 +31,10 @@ class ContourController {
                                const Eigen::Vector2d& measured) = 0;
   virtual void end_iteration() {}
   virtual std::string describe() const = 0;
+  // Internal estimates in a fixed order (at most kMaxControllerEstimates); none by default.
+  virtual std::vector<EstimateName> estimate_names() const { return {}; }
+  // Their values after the last step(), into out[0 .. estimate_names().size()). No allocation.
+  virtual void read_estimates(double* /*out*/) const {}
 };
 
 }  // namespace netmc::control

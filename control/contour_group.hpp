@@ -6,11 +6,14 @@
 // (spatial_contour_group.hpp). Vectors have a fixed capacity so that a cycle never allocates.
 
 #include <Eigen/Dense>
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "control/contour_error/contour_error_estimator.hpp"
+#include "control/controller_estimate.hpp"
 
 namespace netmc::control {
 
@@ -51,6 +54,8 @@ struct GroupCycle {
   AxisVector axis_command;            // u of the per-axis controllers (U where there are none)
   double coupling_command = 0.0;      // u_e of a cross-coupled controller, else 0
   ContourErrorEstimate estimate;      // the controller's own contour-error estimate
+  // The controller's internal estimates (GroupController::estimate_names), the rest unused.
+  std::array<double, kMaxControllerEstimates> estimates{};
 };
 
 class GroupController {
@@ -64,6 +69,8 @@ class GroupController {
                                  const AxisVector& measured) = 0;
   virtual void end_iteration() {}
   virtual std::string describe() const = 0;
+  // Names and units of GroupCycle::estimates, fixed for the controller's life.
+  virtual std::vector<EstimateName> estimate_names() const { return {}; }
 };
 
 }  // namespace netmc::control

@@ -21,6 +21,12 @@ double PlanarContour::contour_error(const AxisVector& point) const {
 PlanarGroupController::PlanarGroupController(std::unique_ptr<ContourController> controller)
     : controller_(std::move(controller)) {
   if (!controller_) throw std::invalid_argument("controller: missing");
+  const std::size_t estimates = controller_->estimate_names().size();
+  if (estimates > kMaxControllerEstimates) {
+    throw std::invalid_argument("controller: " + std::to_string(estimates) + " internal estimates, at most " +
+                                std::to_string(kMaxControllerEstimates) + " are recorded");
+  }
+  has_estimates_ = estimates > 0;
   cycle_.command.setZero(2);
   cycle_.axis_command.setZero(2);
 }
@@ -41,6 +47,7 @@ const GroupCycle& PlanarGroupController::step(std::size_t cycle, const GroupRefe
   cycle_.axis_command = out.axis_command;
   cycle_.coupling_command = out.coupling_command;
   cycle_.estimate = out.estimate;
+  if (has_estimates_) controller_->read_estimates(cycle_.estimates.data());
   return cycle_;
 }
 

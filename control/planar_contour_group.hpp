@@ -37,9 +37,11 @@ class PlanarGroupController final : public GroupController {
                          const AxisVector& measured) override;
   void end_iteration() override { controller_->end_iteration(); }
   std::string describe() const override { return controller_->describe(); }
+  std::vector<EstimateName> estimate_names() const override { return controller_->estimate_names(); }
 
  private:
   std::unique_ptr<ContourController> controller_;
+  bool has_estimates_ = false;
   GroupCycle cycle_;
 };
 

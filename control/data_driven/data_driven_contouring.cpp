@@ -52,4 +52,21 @@ std::string DataDrivenContouring::describe() const {
   return out.str();
 }
 
+std::vector<EstimateName> DataDrivenContouring::estimate_names() const {
+  std::vector<EstimateName> names;
+  for (int axis = 0; axis < 2; ++axis) {
+    for (std::size_t i = 0; i < axes_[axis]->estimate_count(); ++i) {
+      const NamedEstimate e = axes_[axis]->estimate(i);
+      names.push_back({std::string(axis == 0 ? "x_" : "y_") + e.name, e.unit});
+    }
+  }
+  return names;
+}
+
+void DataDrivenContouring::read_estimates(double* out) const {
+  for (int axis = 0; axis < 2; ++axis) {
+    for (std::size_t i = 0; i < axes_[axis]->estimate_count(); ++i) *out++ = axes_[axis]->estimate(i).value;
+  }
+}
+
 }  // namespace netmc::control

@@ -23,6 +23,9 @@ class DataDrivenContouring final : public ContourController {
   void begin_iteration(const Eigen::Vector2d& initial_position, std::size_t samples) override;
   ContouringCycle step(std::size_t cycle, const ReferencePoint& reference, const Eigen::Vector2d& measured) override;
   std::string describe() const override;
+  // Each axis's law estimates, x first ("x_phi_hat" ...).
+  std::vector<EstimateName> estimate_names() const override;
+  void read_estimates(double* out) const override;
   const DataDrivenAxisLaw& axis(int index) const { return *axes_[index]; }
 
  private:

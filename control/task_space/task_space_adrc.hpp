@@ -87,6 +87,14 @@ class TaskSpaceAdrc final : public ContourController {
 
   // Observer of the contour (0) and tangential (1) coordinate.
   const ExtendedStateObserver& observer(int coordinate) const { return observers_[coordinate]; }
+  // The observers' lumped disturbances, contour then tangential (task accelerations).
+  std::vector<EstimateName> estimate_names() const override {
+    return {{"fc_hat", "m/s^2"}, {"fm_hat", "m/s^2"}};
+  }
+  void read_estimates(double* out) const override {
+    out[0] = observers_[0].disturbance();
+    out[1] = observers_[1].disturbance();
+  }
 
  private:
   GtcfAdrcGains gains_;

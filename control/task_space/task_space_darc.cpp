@@ -84,4 +84,15 @@ std::string TaskSpaceDarc::describe() const {
   return text.str();
 }
 
+std::vector<EstimateName> parameter_estimate_names() {
+  return {{"M1_hat", "V/(m/s^2)"}, {"M2_hat", "V/(m/s^2)"}, {"B1_hat", "V/(m/s)"}, {"B2_hat", "V/(m/s)"},
+          {"A1_hat", "V"},         {"A2_hat", "V"},         {"dn1_hat", "V"},        {"dn2_hat", "V"}};
+}
+
+std::vector<EstimateName> TaskSpaceDarc::estimate_names() const { return parameter_estimate_names(); }
+
+void TaskSpaceDarc::read_estimates(double* out) const {
+  for (int i = 0; i < 8; ++i) out[i] = estimate_[i];
+}
+
 }  // namespace netmc::control

@@ -10,6 +10,7 @@
 // global or the local task frame and with the initialization filter (eq. 2-67) in the global one.
 
 #include <memory>
+#include <vector>
 #include <string>
 
 #include "control/contour_controller.hpp"
@@ -18,6 +19,9 @@
 namespace netmc::control {
 
 using ParameterVector = Eigen::Matrix<double, 8, 1>;
+
+// Names and units of theta = [M1, M2, B1, B2, A1, A2, dn1, dn2] (model 3-2, volts), as estimates.
+std::vector<EstimateName> parameter_estimate_names();
 
 // Thesis ch. 3 experiment, controller C1 (digest 2.7): bounds (3-47), Gamma, theta_hat(0).
 struct DarcGains {
@@ -53,6 +57,8 @@ class TaskSpaceDarc final : public ContourController {
   std::string describe() const override;
 
   const ParameterVector& parameter_estimate() const { return estimate_; }
+  std::vector<EstimateName> estimate_names() const override;
+  void read_estimates(double* out) const override;
 
  private:
   DarcGains gains_;

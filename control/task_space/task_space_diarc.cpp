@@ -123,4 +123,17 @@ std::string TaskSpaceDiarc::describe() const {
   return text.str();
 }
 
+std::vector<EstimateName> TaskSpaceDiarc::estimate_names() const {
+  auto names = parameter_estimate_names();
+  names.push_back({"dc1_hat", "V"});
+  names.push_back({"dc2_hat", "V"});
+  return names;
+}
+
+void TaskSpaceDiarc::read_estimates(double* out) const {
+  for (int i = 0; i < 8; ++i) out[i] = estimate_[i];
+  out[8] = disturbance_[0];
+  out[9] = disturbance_[1];
+}
+
 }  // namespace netmc::control

@@ -74,6 +74,9 @@ class TaskSpaceDiarc final : public ContourController {
   std::string describe() const override;
 
   const ParameterVector& parameter_estimate() const { return estimate_; }
+  // theta_hat (8) then d_hat_c (2).
+  std::vector<EstimateName> estimate_names() const override;
+  void read_estimates(double* out) const override;
   const Eigen::Vector2d& disturbance_estimate() const { return disturbance_; }
   const CovarianceMatrix& covariance() const { return covariance_; }
 

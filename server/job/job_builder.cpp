@@ -673,6 +673,12 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   out.set_deadline_misses(static_cast<std::uint32_t>(m.deadline_misses));
   out.set_lost_feedback(static_cast<std::uint32_t>(m.lost_feedback));
   out.set_late_feedback(static_cast<std::uint32_t>(m.late_feedback));
+  for (std::size_t i = 0; i < m.estimate_names.size() && i < m.final_estimates.size(); ++i) {
+    auto& estimate = *out.add_estimates();
+    estimate.set_name(m.estimate_names[i].name);
+    estimate.set_unit(m.estimate_names[i].unit);
+    estimate.set_value(m.final_estimates[i]);
+  }
   out.set_lost_setpoints(static_cast<std::uint32_t>(m.lost_setpoints));
   out.set_stale_setpoints(static_cast<std::uint32_t>(m.stale_setpoints));
   out.set_diverged(m.diverged);

@@ -50,6 +50,8 @@ control::AxisVector ContourServer::begin_iteration(std::size_t iteration) {
 
   record_ = IterationRecord{};
   record_.metrics.iteration = iteration;
+  record_.metrics.estimate_names = controller_->estimate_names();
+  last_estimates_ = {};
   for (auto* values : {&record_.metrics.tracking_rms_m, &record_.metrics.tracking_max_m,
                        &record_.metrics.command_rms, &record_.metrics.command_rms_steady,
                        &tracking_squares_, &command_squares_, &steady_command_squares_}) {
@@ -129,6 +131,7 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   CycleCommand out;
   const control::GroupCycle& step = controller_->step(cycle, reference, server_measurement_);
   out.command = step.command;
+  last_estimates_ = step.estimates;
   out.send_time_s = compute_time_ + job_.compute_delay_s;
   tau_cc_.push_back(job_.compute_delay_s);
 
@@ -171,6 +174,7 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
     row.contour_error_m = contour_error;
     row.contour_error_estimate_m = step.estimate.contour_error;
     row.coupling_command = step.coupling_command;
+    row.estimates = step.estimates;
   }
   return out;
 }
@@ -207,6 +211,8 @@ IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
           std::sqrt(steady_command_squares_[axis] / static_cast<double>(steady_samples_));
     }
   }
+  m.final_estimates.assign(last_estimates_.begin(),
+                           last_estimates_.begin() + static_cast<std::ptrdiff_t>(m.estimate_names.size()));
   m.lost_setpoints = lost_setpoints;
   m.stale_setpoints = stale_setpoints;
   m.tau_mean_s = mean(tau_);

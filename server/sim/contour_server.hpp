@@ -70,6 +70,7 @@ class ContourServer {
   std::vector<double> tracking_squares_, command_squares_, steady_command_squares_;
   double compute_time_ = 0.0;
   std::size_t samples_ = 0;
+  std::array<double, control::kMaxControllerEstimates> last_estimates_{};
 };
 
 }  // namespace netmc::sim

@@ -2,6 +2,7 @@
 // Per-iteration results of a contouring job (architecture.md, "Metrics"), SI units.
 
 #include <cstddef>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -40,6 +41,10 @@ struct IterationMetrics {
   bool diverged = false;                 // the loop went unstable; metrics cover samples before
   double diverged_at_s = 0.0;
   double clock_uncertainty_s = 0.0;      // distributed realtime: +- on tau_sc / tau_ca
+  // The controller's internal estimates (adaptive parameters, observer states) and their values
+  // after the iteration's last cycle; empty for a controller without any.
+  std::vector<control::EstimateName> estimate_names;
+  std::vector<double> final_estimates;
 };
 
 // One sample of a per-cycle trace (for --csv); per-axis values in the group's order.
@@ -54,6 +59,8 @@ struct CycleTrace {
   control::AxisVector command;
   double coupling_command = 0.0;
   double tau_s = -1.0;                   // of axis x; -1 when its setpoint was lost
+  // The first IterationMetrics::estimate_names.size() are the controller's estimates.
+  std::array<double, control::kMaxControllerEstimates> estimates{};
 };
 
 struct IterationRecord {

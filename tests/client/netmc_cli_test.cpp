@@ -83,6 +83,25 @@ TEST(NetmcCli, ThreeAxisTracesHaveAColumnPerAxis) {
   EXPECT_EQ(rows, 501u);  // 0.1 s at 0.2 ms, samples 0..N
 }
 
+TEST(NetmcCli, AdaptiveControllersWriteTheirEstimatesToTracesAndJson) {
+  const auto traces = scratch("estimate-traces");
+  const auto json = scratch("estimates.json");
+  const Result result = run("sim --preset thesis-darc --controller gtcf-darc --duration 0.05s --csv " +
+                            traces.string() + " --json " + json.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  std::ifstream file(traces / "1-gtcf-darc.csv");
+  std::string header;
+  std::getline(file, header);
+  EXPECT_NE(header.find(",ue,tau_x_s,M1_hat[V/(m/s^2)],M2_hat[V/(m/s^2)],B1_hat[V/(m/s)]"), std::string::npos)
+      << header;
+  EXPECT_NE(header.find("dn2_hat[V]"), std::string::npos);
+  std::ifstream results(json);
+  const std::string text((std::istreambuf_iterator<char>(results)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find(R"json("name": "M1_hat",)json"), std::string::npos) << text;
+  EXPECT_NE(text.find(R"json("unit": "V/(m/s^2)",)json"), std::string::npos) << text;
+  EXPECT_NE(text.find(R"json("estimates": [)json"), std::string::npos) << text;
+}
+
 TEST(NetmcCli, JsonHoldsEveryIterationOfEveryRun) {
   const auto json = scratch("out.json");
   const auto csv = scratch("traces");

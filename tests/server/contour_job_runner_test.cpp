@@ -150,3 +150,33 @@ TEST(ContourJobRunner, InvalidJobsNameTheField) {
 
 }  // namespace
 }  // namespace netmc::sim
+
+namespace netmc::sim {
+namespace {
+
+// An adaptive controller's internal estimates reach the trace every cycle and the metrics at the
+// end of the iteration; DIARC's mass estimates move from their initial values towards the stage's.
+TEST(ContourJobRunner, ControllerEstimatesAreRecordedPerCycleAndAtTheEnd) {
+  ContourJob job = testing::thesis_ellipse_job("gtcf-diarc", 2.0);
+  job.record_traces = true;
+  ContourJobRunner runner(job);
+  const auto record = runner.run_iteration();
+  const auto& m = record.metrics;
+  ASSERT_EQ(m.estimate_names.size(), 10u);  // theta_hat (8) and d_hat_c (2)
+  EXPECT_EQ(m.estimate_names[0].name, "M1_hat");
+  EXPECT_EQ(m.estimate_names[0].unit, "V/(m/s^2)");
+  EXPECT_EQ(m.estimate_names[9].name, "dc2_hat");
+  ASSERT_EQ(m.final_estimates.size(), 10u);
+  // The last trace row holds the final values; the first the initial estimate (0.1 for M1).
+  for (std::size_t i = 0; i < 10; ++i) EXPECT_EQ(record.trace.back().estimates[i], m.final_estimates[i]) << i;
+  EXPECT_NEAR(record.trace.front().estimates[0], 0.1, 0.01);
+  // The stage's X mass is 0.12 V/(m/s^2): the estimate moved most of the way within 1.8 s.
+  EXPECT_GT(m.final_estimates[0], 0.11);
+  EXPECT_LT(m.final_estimates[0], 0.13);
+  // A controller without internal estimates records none.
+  ContourJob plain = testing::small_circle_job("pid");
+  EXPECT_TRUE(ContourJobRunner(plain).run_iteration().metrics.estimate_names.empty());
+}
+
+}  // namespace
+}  // namespace netmc::sim
