@@ -50,6 +50,15 @@ const RunOutcome& first_on_trajectory(const std::vector<RunOutcome>& outcomes, c
   });
 }
 
+// The input unit of a run's plant ("ballscrew (y: load_kg=3)" names the plant first).
+std::string input_unit(const std::string& plant_description) {
+  try {
+    return plant::plant_input_unit(plant_description.substr(0, plant_description.find(' ')));
+  } catch (const std::invalid_argument&) {
+    return "input unit";
+  }
+}
+
 // A paper value in um, or "-" where the paper gives none (NaN).
 std::string paper_micrometres(double metres) {
   return std::isfinite(metres) ? fmt::format("{:.2f}", metres * 1e6) : std::string("-");
@@ -61,7 +70,7 @@ void print_steady_table(std::ostream& out, const StudyPlan& plan,
                         const std::vector<RunOutcome>& outcomes) {
   std::size_t width = 18;
   for (const auto& outcome : outcomes) width = std::max(width, outcome.result.label().size());
-  const std::string unit = plant::plant_input_unit(outcomes.front().result.plant());
+  const std::string unit = input_unit(outcomes.front().result.plant());
   fmt::print(out, "{:<{}} {:>17} {:>17} {:>10}  {:>11} {:>11}  {:>16} {:>16}\n", "run", width,
              "e_rms_steady [um]", "e_max_steady [um]", "rms/first", "u_x rms [" + unit + "]",
              "u_y rms [" + unit + "]", "paper rms [um]", "paper max [um]");
