@@ -1,5 +1,7 @@
 #include "client/presets.hpp"
 
+#include <fmt/format.h>
+
 #include <numbers>
 #include <stdexcept>
 
@@ -49,7 +51,8 @@ netmc::v1::JobSpec seed001_job(const std::string& controller) {
 
 std::vector<std::string> preset_names() {
   return {"seed001", "seed001-ellipse", "seed001-line", "seed001-long-delay", "seed001-bursty",
-          "thesis-ellipse", "thesis-circle", "thesis-darc", "thesis-ellipse-delay", "thesis-spatial"};
+          "thesis-ellipse", "thesis-circle", "thesis-darc", "thesis-darc-sets", "thesis-ellipse-delay",
+          "thesis-spatial"};
 }
 
 namespace {
@@ -191,6 +194,61 @@ StudyPlan thesis_darc() {
                                "thesis Table 3-1 (Set1)");
   for (const char* controller : {"ltcf-sarc", "gtcf-sarc", "ltcf-darc", "gtcf-darc", "ltcf-diarc", "gtcf-diarc"}) {
     plan.jobs.push_back(thesis_job(t, controller, controller, 2.0));
+  }
+  return plan;
+}
+
+// Thesis Tables 3-1 and 3-2 (digest 2.7): Exp I (eq. 3-48) and Exp II (eq. 3-49), each under
+// Set1 (no load), Set2 (5 kg payload: M1 0.12 -> 0.19, M2 0.55 -> 0.62 V/(m/s^2)) and Set3
+// (+0.8 V on the Y input from 2.2 to 5.2 s), for C1 GTCF-DARC, C2 GTCF-DIARC and C3 LTCF-DIARC;
+// 10 s, metrics over 2-10 s. The gains stay the thesis's; only the plant changes.
+StudyPlan thesis_darc_sets() {
+  struct Experiment {
+    const char* name;
+    netmc::v1::Trajectory trajectory;
+  };
+  const Experiment experiments[] = {{"I", thesis_ellipse_motion(0.2, 0.1, 4.0, 10.0)},
+                                    {"II", thesis_ellipse_motion(0.2, 0.15, 3.0, 10.0)}};
+  struct Row {
+    const char* controller;
+    int set;
+    double rms_i, max_i, rms_ii, max_ii;  // um
+  };
+  const Row rows[] = {
+      {"gtcf-darc", 1, 2.42, 8.57, 2.57, 8.72},   {"gtcf-diarc", 1, 2.42, 8.15, 2.60, 9.64},
+      {"ltcf-diarc", 1, 3.30, 10.14, 4.15, 13.98}, {"gtcf-darc", 2, 2.50, 9.52, 2.74, 9.93},
+      {"gtcf-diarc", 2, 2.44, 8.38, 2.74, 9.74},  {"ltcf-diarc", 2, 3.38, 10.21, 4.19, 15.72},
+      {"gtcf-darc", 3, 2.73, 37.48, 2.91, 36.10}, {"gtcf-diarc", 3, 2.73, 36.52, 2.93, 35.30},
+      {"ltcf-diarc", 3, 3.54, 36.54, 4.40, 38.51},
+  };
+  StudyPlan plan = thesis_plan("thesis Tables 3-1 and 3-2: Exp I (2:1 ellipse at 4 rad/s) and Exp II (4:3 at 3 rad/s), "
+                               "Sets 1-3, linear motors, Ts = 0.2 ms, metrics over 2-10 s",
+                               {}, "thesis Tables 3-1/3-2");
+  for (const auto& experiment : experiments) {
+    for (const Row& row : rows) {
+      const std::string label = fmt::format("{} {} Set{}", row.controller, experiment.name, row.set);
+      auto job = thesis_job(experiment.trajectory, row.controller, label, 2.0);
+      if (row.set == 2) {
+        for (const char* axis : {"x", "y"}) {
+          auto& settings = *job.add_plant_axes();
+          settings.set_axis(axis);
+          auto& load = *settings.add_parameters();
+          load.set_key("load_v_s2_m");
+          load.set_value(0.07);
+        }
+      }
+      if (row.set == 3) {
+        auto& settings = *job.add_plant_axes();
+        settings.set_axis("y");
+        auto& step = *settings.mutable_disturbance()->mutable_step();
+        step.set_amplitude(0.8);
+        step.set_on_s(2.2);
+        step.set_off_s(5.2);
+      }
+      plan.jobs.push_back(job);
+      const bool first = experiment.name == std::string_view("I");
+      plan.paper.push_back({label, (first ? row.rms_i : row.rms_ii) * 1e-6, (first ? row.max_i : row.max_ii) * 1e-6});
+    }
   }
   return plan;
 }
@@ -361,6 +419,7 @@ StudyPlan make_preset(std::string_view name) {
   if (name == "thesis-ellipse") return thesis_ellipse();
   if (name == "thesis-circle") return thesis_circle();
   if (name == "thesis-darc") return thesis_darc();
+  if (name == "thesis-darc-sets") return thesis_darc_sets();
   if (name == "thesis-ellipse-delay") return thesis_ellipse_delay();
   if (name == "thesis-spatial") return thesis_spatial();
   std::string expected;
