@@ -427,7 +427,7 @@ void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains) {
 void parse_task_space_gains(std::string_view text, netmc::v1::TaskSpaceGains& gains) {
   constexpr std::string_view flag = "--task-space";
   const auto keys =
-      parse_keys(text, flag, {"init_filter", "wc", "wm", "lambda_c", "lambda_m", "k_c", "k_m", "ltcf_rotation"});
+      parse_keys(text, flag, {"init_filter", "wc", "wm", "lambda_c", "lambda_m", "k_c", "k_m", "ltcf_rotation", "cogging"});
   for (const auto& [key, value] : keys) {
     if (key == "init_filter" || key == "ltcf_rotation") {
       if (value != "on" && value != "off") fail(flag, key + " expects on or off, got '" + value + "'");
@@ -436,6 +436,11 @@ void parse_task_space_gains(std::string_view text, netmc::v1::TaskSpaceGains& ga
       continue;
     }
     const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
+    if (key == "cogging") {  // 0 turns the compensation off (thesis ch. 4, C1)
+      if (!(number >= 0.0)) fail(flag, "cogging expects a non-negative number, got '" + value + "'");
+      gains.set_cogging_adaptation(number);
+      continue;
+    }
     if (!(number > 0.0)) fail(flag, key + " expects a positive number, got '" + value + "'");
     if (key == "wc") gains.set_filter_wc(number);
     if (key == "wm") gains.set_filter_wm(number);

@@ -207,7 +207,7 @@ void add_job_override_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--pidccc", flags.pidccc, "PID cross-coupling gains: kp=..,ki=..,kd=..");
   app->add_option("--pid", flags.pid, "Per-axis PID gains: kp=..,ki=..,kd=..");
   app->add_option("--estimator", flags.estimator, "Contour-error estimator of a cross-coupled controller: curvature | tangent | newton | steffensen");
-  app->add_option("--task-space", flags.task_space, "Task-space controllers: init_filter=on|off,wc=8,wm=1 (gtcf-*: initialization filter, rad/s); lambda_c=100,lambda_m=30,k_c=100,k_m=60 (SARC/DARC/DIARC gains); ltcf_rotation=on|off (ltcf-*: differentiate the turning frame)");
+  app->add_option("--task-space", flags.task_space, "Task-space controllers: init_filter=on|off,wc=8,wm=1 (gtcf-*: initialization filter, rad/s); lambda_c=100,lambda_m=30,k_c=100,k_m=60 (SARC/DARC/DIARC gains); ltcf_rotation=on|off (ltcf-*: differentiate the turning frame); cogging=500 (*-darc-cogging: adaptation of the cogging harmonics, 0 = none)");
   app->add_option("--initial-position", flags.initial_position, "Where the axes rest at t = 0, x=..,y=.. (default: the trajectory's start)");
   app->add_option("--sensor", flags.sensor, "Position sensor: resolution=0.5um,noise=0.1um");
 }

@@ -8,7 +8,8 @@ namespace netmc::control {
 namespace {
 
 std::string usage() {
-  return "expected mfa-dtsmc, mfac, gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, gtcf-adrc, AXIS or "
+  return "expected mfa-dtsmc, mfac, gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, "
+         "gtcf-darc-cogging, ltcf-darc-cogging, gtcf-adrc, AXIS or "
          "AXIS+COMPENSATOR with AXIS one of adrc, pid and "
          "COMPENSATOR one of pidccc, ilccc";
 }
@@ -85,6 +86,14 @@ std::unique_ptr<ContourController> make_contour_controller(std::string_view name
     return std::make_unique<TaskSpaceAdrc>(settings.gtcf_adrc, sample_period_s, make_task_frame(trajectory));
   }
   if (name == "ltcf-sarc") return std::make_unique<TaskSpaceSarc>(settings.sarc, sample_period_s, nullptr, filter, settings.local_frame_rate);
+  if (name == "gtcf-darc-cogging") {
+    return std::make_unique<TaskSpaceCoggingDarc>(settings.cogging_darc, sample_period_s, make_task_frame(trajectory),
+                                                  filter);
+  }
+  if (name == "ltcf-darc-cogging") {
+    return std::make_unique<TaskSpaceCoggingDarc>(settings.cogging_darc, sample_period_s, nullptr, filter,
+                                                  settings.local_frame_rate);
+  }
   if (name == "gtcf-darc") {
     return std::make_unique<TaskSpaceDarc>(settings.darc, sample_period_s, make_task_frame(trajectory), filter);
   }

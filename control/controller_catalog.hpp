@@ -15,6 +15,7 @@
 #include "control/cross_coupling/pid_cross_coupling.hpp"
 #include "control/task_space/spatial_sarc.hpp"
 #include "control/task_space/task_space_adrc.hpp"
+#include "control/task_space/task_space_cogging_darc.hpp"
 #include "control/task_space/task_space_darc.hpp"
 #include "control/task_space/task_space_diarc.hpp"
 #include "control/task_space/task_space_sarc.hpp"
@@ -33,6 +34,7 @@ struct ControllerSettings {
   GtcfAdrcGains gtcf_adrc;
   DarcGains darc;
   DiarcGains diarc;
+  CoggingDarcGains cogging_darc;  // thesis ch. 4 (gtcf-darc-cogging, ltcf-darc-cogging)
   SpatialSarcGains spatial_sarc;  // three-axis GTCF-SARC (thesis ch. 6)
   // Thesis eq. 2-67, for the task-space controllers in the global frame (gtcf-*).
   InitializationFilterSettings initialization_filter;
@@ -58,7 +60,7 @@ ContouringController make_contouring_controller(std::string_view name,
 
 // Every controller by name: AXIS[+COMPENSATOR] as above, or a task-space contouring controller
 // gtcf-sarc / ltcf-sarc (thesis ch. 2), gtcf-darc / ltcf-darc / gtcf-diarc / ltcf-diarc
-// (thesis ch. 3) or gtcf-adrc (task-space ADRC) on the contour of `trajectory`, or paper 002's
+// (thesis ch. 3), gtcf-darc-cogging / ltcf-darc-cogging (thesis ch. 4) or gtcf-adrc (task-space ADRC) on the contour of `trajectory`, or paper 002's
 // data-driven contouring mfa-dtsmc / mfac.
 std::unique_ptr<ContourController> make_contour_controller(std::string_view name,
                                                            const ControllerSettings& settings,

@@ -14,6 +14,6 @@ struct EstimateName {
 };
 
 // Most estimates a controller may expose (the trace rows keep a fixed-size array of them).
-inline constexpr std::size_t kMaxControllerEstimates = 16;
+inline constexpr std::size_t kMaxControllerEstimates = 24;
 
 }  // namespace netmc::control

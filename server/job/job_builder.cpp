@@ -362,20 +362,30 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   // One Lambda and K for every task-space controller that has them (SARC, DARC, DIARC).
   // Three-axis GTCF-SARC: both contour coordinates [rc1, rc2] take the contour gains.
   if (positive(t.has_lambda_c(), t.lambda_c(), "lambda_c")) {
-    s.sarc.lambda[0] = s.darc.lambda[0] = s.diarc.lambda[0] = t.lambda_c();
+    s.sarc.lambda[0] = s.darc.lambda[0] = s.diarc.lambda[0] = s.cogging_darc.lambda[0] = t.lambda_c();
     s.spatial_sarc.lambda[0] = s.spatial_sarc.lambda[1] = t.lambda_c();
   }
   if (positive(t.has_lambda_m(), t.lambda_m(), "lambda_m")) {
-    s.sarc.lambda[1] = s.darc.lambda[1] = s.diarc.lambda[1] = s.spatial_sarc.lambda[2] = t.lambda_m();
+    s.sarc.lambda[1] = s.darc.lambda[1] = s.diarc.lambda[1] = s.cogging_darc.lambda[1] = s.spatial_sarc.lambda[2] =
+        t.lambda_m();
   }
   if (positive(t.has_k_c(), t.k_c(), "k_c")) {
-    s.sarc.feedback[0] = s.darc.feedback[0] = s.diarc.feedback[0] = t.k_c();
+    s.sarc.feedback[0] = s.darc.feedback[0] = s.diarc.feedback[0] = s.cogging_darc.feedback[0] = t.k_c();
     s.spatial_sarc.feedback[0] = s.spatial_sarc.feedback[1] = t.k_c();
   }
   if (positive(t.has_k_m(), t.k_m(), "k_m")) {
-    s.sarc.feedback[1] = s.darc.feedback[1] = s.diarc.feedback[1] = s.spatial_sarc.feedback[2] = t.k_m();
+    s.sarc.feedback[1] = s.darc.feedback[1] = s.diarc.feedback[1] = s.cogging_darc.feedback[1] =
+        s.spatial_sarc.feedback[2] = t.k_m();
   }
   if (t.ltcf_rotation()) s.local_frame_rate = control::LocalFrameRate::rotating;
+  if (t.has_cogging_adaptation()) {
+    if (!(t.cogging_adaptation() >= 0.0 && t.cogging_adaptation() <= 1e6)) {
+      throw std::invalid_argument("controller.task_space.cogging_adaptation: expected a number in [0, 1e6]");
+    }
+    for (int row = 6; row < 6 + 4 * control::kCoggingHarmonicsPerAxis; ++row) {
+      s.cogging_darc.adaptation[row] = t.cogging_adaptation();
+    }
+  }
   return s;
 }
 

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "client/presets.hpp"
+#include "control/task_space/task_space_cogging_darc.hpp"
 #include "control/task_space/task_space_diarc.hpp"
 #include "plant/plant_catalog.hpp"
 #include "tests/control/thesis_model_support.hpp"
@@ -148,3 +149,56 @@ TEST(ThesisPresets, SetsTwoAndThreeChangeOnlyThePlant) {
 
 }  // namespace
 }  // namespace netmc::cli
+
+namespace netmc::cli {
+namespace {
+
+// Thesis ch. 4: with the cogging harmonics adapting (C2), their estimates find the stage's
+// cogging (plant_catalog.cpp: X (0.05, 0.03), (0.02, -0.01), (0.01, 0.01) V; Y (0.04, -0.02),
+// (0.03, 0.02), (0.015, -0.01) V) within 0.01 V on Exp II, and the contour error drops.
+TEST(ThesisPresets, CoggingEstimatesFindTheStagesCogging) {
+  const StudyPlan plan = make_preset("thesis-cogging");
+  ASSERT_EQ(plan.jobs.size(), 12u);
+  const auto find = [&](const std::string& label) {
+    const auto it = std::find_if(plan.jobs.begin(), plan.jobs.end(), [&](const auto& j) { return j.name() == label; });
+    EXPECT_NE(it, plan.jobs.end()) << label;
+    return *it;
+  };
+  const auto c2 = run(find("C2 II Set1"), {10.0, 2.0}).metrics;
+  const auto c1 = run(find("C1 II Set1"), {10.0, 2.0}).metrics;
+  ASSERT_EQ(c2.final_estimates.size(), 20u);
+  const double truth[12] = {0.05, 0.03, 0.02, -0.01, 0.01, 0.01, 0.04, -0.02, 0.03, 0.02, 0.015, -0.01};
+  for (int i = 0; i < 12; ++i) {
+    EXPECT_NEAR(c2.final_estimates[6 + static_cast<std::size_t>(i)], truth[i], 0.01) << c2.estimate_names[6 + static_cast<std::size_t>(i)].name;
+    EXPECT_EQ(c1.final_estimates[6 + static_cast<std::size_t>(i)], 0.0);  // C1 does not adapt them
+  }
+  // Measured: 2.01 against 2.74 um (-27 %; thesis -28 %).
+  EXPECT_LT(c2.e_rms_steady_m, 0.85 * c1.e_rms_steady_m);
+}
+
+}  // namespace
+}  // namespace netmc::cli
+
+namespace netmc::control {
+namespace {
+
+TEST(CoggingDarc, RegressorHoldsTheHarmonicsOfEachAxisPosition) {
+  const CoggingDarcGains gains;
+  const Eigen::Vector2d position(0.0123, -0.0456);
+  const auto phi = cogging_darc_regressor(gains, {1.0, 2.0}, {0.1, -0.2}, {0.3, -0.4}, position);
+  const double k = 2.0 * std::numbers::pi / 0.05;
+  EXPECT_EQ(phi(0, 0), 1.0);
+  EXPECT_EQ(phi(1, 1), 2.0);
+  EXPECT_EQ(phi(0, 2), 0.1);
+  EXPECT_NEAR(phi(1, 5), 2.0 / std::numbers::pi * std::atan(9000.0 * -0.4), 1e-15);  // desired velocity
+  EXPECT_NEAR(phi(0, 6), std::sin(k * 1 * position.x()), 1e-15);
+  EXPECT_NEAR(phi(0, 11), std::cos(k * 3 * position.x()), 1e-15);
+  EXPECT_NEAR(phi(1, 14), std::sin(k * 6 * position.y()), 1e-15);
+  EXPECT_NEAR(phi(1, 17), std::cos(k * 12 * position.y()), 1e-15);
+  EXPECT_EQ(phi(0, 12), 0.0);  // X's row has no Y harmonics
+  EXPECT_EQ(phi(0, 18), -1.0);
+  EXPECT_EQ(phi(1, 19), -1.0);
+}
+
+}  // namespace
+}  // namespace netmc::control
