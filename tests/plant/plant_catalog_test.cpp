@@ -13,7 +13,7 @@ namespace {
 
 TEST(PlantCatalog, Names) {
   EXPECT_EQ(plant_names(),
-            (std::vector<std::string>{"seed001", "ballscrew", "linmotor", "stage004"}));
+            (std::vector<std::string>{"seed001", "ballscrew", "linmotor", "stage004", "linmotor-flex"}));
 }
 
 TEST(PlantCatalog, UnknownNameListsTheKnownOnes) {
@@ -22,7 +22,8 @@ TEST(PlantCatalog, UnknownNameListsTheKnownOnes) {
     ADD_FAILURE();
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()),
-              "plant: unknown name 'x' (expected one of: seed001, ballscrew, linmotor, stage004)");
+              "plant: unknown name 'x' (expected one of: seed001, ballscrew, linmotor, stage004, "
+              "linmotor-flex)");
   }
 }
 
