@@ -1,5 +1,7 @@
 #pragma once
-// Uniform motion around a circle (paper 001's experiment: r = 10 mm, centre (50, 50) mm, 8 s).
+// Uniform motion around a circle (paper 001's experiment: r = 10 mm, centre (50, 50) mm, 8 s),
+// or, with a ramp, from rest to rest: the angle ramps in and out as a quintic in time (digest
+// 4.6 [A], paper 004's circle) and holds the end point after the duration.
 
 #include "control/trajectory/reference_trajectory.hpp"
 
@@ -12,6 +14,9 @@ struct CircleParameters {
   double start_angle_rad = 0.0;
   bool clockwise = false;
   double revolutions = 1.0;        // duration = revolutions * period
+  // > 0: the angular rate ramps up from rest over ramp_s and back down to rest over the last
+  // ramp_s of the duration (at most half of it), the same total angle; 0: uniform rate throughout.
+  double ramp_s = 0.0;
 };
 
 class CircleTrajectory final : public ReferenceTrajectory {
@@ -25,10 +30,17 @@ class CircleTrajectory final : public ReferenceTrajectory {
   std::unique_ptr<ReferenceTrajectory> clone() const override;
   std::string describe() const override;
   const CircleParameters& parameters() const { return p_; }
+  // The angle travelled from the start and its first two derivatives at `time_s`.
+  struct AngleState {
+    double angle = 0.0, rate = 0.0, acceleration = 0.0;
+  };
+  AngleState angle_at(double time_s) const;
 
  private:
+  AngleState ramp_in(double time_s) const;  // 0 <= time_s <= ramp_s
+
   CircleParameters p_;
-  double angular_rate_;  // signed [rad/s]
+  double angular_rate_;  // signed [rad/s]: the cruise rate
 };
 
 }  // namespace netmc::control

@@ -14,6 +14,11 @@ PolylineTrajectory::PolylineTrajectory(const PolylineParameters& parameters) : p
   require_positive(p_.max_speed_m_s, "polyline vmax");
   require_positive(p_.max_acceleration_m_s2, "polyline amax");
   require_non_negative(p_.corner_speed_m_s, "polyline corner speed");
+  require_non_negative(p_.max_jerk_m_s3, "polyline max jerk");
+  if (p_.max_jerk_m_s3 > 0.0 && p_.corner_speed_m_s > 0.0) {
+    throw std::invalid_argument("polyline corner speed: a jerk-limited polyline stops at every corner; expected 0, got " +
+                                std::to_string(p_.corner_speed_m_s));
+  }
   const auto& points = p_.points;
   if (points.size() < 2) {
     throw std::invalid_argument("polyline points: expected at least two points, got " +
@@ -51,6 +56,7 @@ PolylineTrajectory::PolylineTrajectory(const PolylineParameters& parameters) : p
   for (std::size_t k = 0; k < n; ++k) {
     Segment s;
     s.start = points[k];
+    s.end = points[k + 1];
     s.length = lengths[k];
     s.direction = (points[k + 1] - points[k]) / s.length;
     s.entry_speed = vertex_speed[k];
@@ -65,7 +71,12 @@ PolylineTrajectory::PolylineTrajectory(const PolylineParameters& parameters) : p
     s.decelerate_s = (vp - v1) / a;
     s.cruise_s = std::max(0.0, s.length - accelerate_m - decelerate_m) / vp;
     segments_.push_back(s);
-    start_time_.push_back(start_time_.back() + s.accelerate_s + s.cruise_s + s.decelerate_s);
+    if (p_.max_jerk_m_s3 > 0.0) {
+      moves_.emplace_back(s.length, p_.max_speed_m_s, a, p_.max_jerk_m_s3);
+      start_time_.push_back(start_time_.back() + moves_.back().duration_s());
+    } else {
+      start_time_.push_back(start_time_.back() + s.accelerate_s + s.cruise_s + s.decelerate_s);
+    }
     start_arc_.push_back(start_arc_.back() + s.length);
     area2 += points[k].x() * points[k + 1].y() - points[k + 1].x() * points[k].y();
   }
@@ -81,7 +92,12 @@ ReferencePoint PolylineTrajectory::sample(double time_s) const {
   const double a = p_.max_acceleration_m_s2;
   double tau = t - start_time_[k];
   double along = 0.0, speed = 0.0, acceleration = 0.0;
-  if (tau < s.accelerate_s) {
+  if (!moves_.empty()) {
+    const MoveState state = moves_[k].at(tau);
+    along = state.position;
+    speed = state.speed;
+    acceleration = state.acceleration;
+  } else if (tau < s.accelerate_s) {
     speed = s.entry_speed + a * tau;
     along = s.entry_speed * tau + 0.5 * a * tau * tau;
     acceleration = a;
@@ -96,7 +112,7 @@ ReferencePoint PolylineTrajectory::sample(double time_s) const {
     acceleration = left > 0.0 ? -a : 0.0;
   }
   ReferencePoint point;
-  point.position = s.start + along * s.direction;
+  point.position = along >= s.length ? s.end : Eigen::Vector2d(s.start + along * s.direction);
   point.velocity = speed * s.direction;
   point.acceleration = acceleration * s.direction;
   return point;
@@ -150,6 +166,7 @@ std::string PolylineTrajectory::describe() const {
        << ", length=" << length_m() * 1e3 << " mm, vmax=" << p_.max_speed_m_s * 1e3
        << " mm/s, amax=" << p_.max_acceleration_m_s2 * 1e3 << " mm/s^2";
   if (p_.corner_speed_m_s > 0.0) text << ", corner=" << p_.corner_speed_m_s * 1e3 << " mm/s";
+  if (p_.max_jerk_m_s3 > 0.0) text << ", jmax=" << p_.max_jerk_m_s3 << " m/s^3";
   text << ", " << duration_s() << " s)";
   return text.str();
 }

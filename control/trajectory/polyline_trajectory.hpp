@@ -3,10 +3,12 @@
 // corner speed (0: a full stop) at every corner, accelerating at most `max_acceleration` and
 // moving at most `max_speed` (a trapezoidal speed profile per segment, a triangle when the
 // segment is too short to reach the top speed). Closed when the last point equals the first;
-// the motion starts and ends at rest either way.
+// the motion starts and ends at rest either way. With a jerk limit each segment is instead a
+// rest-to-rest S-curve (JerkLimitedMove): acceleration continuous, a full stop at every corner.
 
 #include <vector>
 
+#include "control/trajectory/jerk_limited_move.hpp"
 #include "control/trajectory/reference_trajectory.hpp"
 
 namespace netmc::control {
@@ -16,6 +18,7 @@ struct PolylineParameters {
   double max_speed_m_s = 0.01;
   double max_acceleration_m_s2 = 0.1;
   double corner_speed_m_s = 0.0;  // at the inner corners; the velocity turns there abruptly
+  double max_jerk_m_s3 = 0.0;     // > 0: jerk-limited, stopping at every corner; 0: trapezoidal
 };
 
 class PolylineTrajectory final : public ReferenceTrajectory {
@@ -37,7 +40,7 @@ class PolylineTrajectory final : public ReferenceTrajectory {
 
  private:
   struct Segment {
-    Eigen::Vector2d start, direction;
+    Eigen::Vector2d start, end, direction;
     double length = 0.0;
     double entry_speed = 0.0, peak_speed = 0.0, exit_speed = 0.0;
     double accelerate_s = 0.0, cruise_s = 0.0, decelerate_s = 0.0;
@@ -48,6 +51,7 @@ class PolylineTrajectory final : public ReferenceTrajectory {
   bool closed_ = false;
   double orientation_ = 1.0;  // -1 for a clockwise closed polyline (outside is on the left)
   std::vector<Segment> segments_;
+  std::vector<JerkLimitedMove> moves_;  // one per segment when jerk-limited, else empty
   std::vector<double> start_time_;  // of each segment, then the end
   std::vector<double> start_arc_;   // arc length at each segment's start, then the total
 };

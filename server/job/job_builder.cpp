@@ -62,6 +62,7 @@ std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1:
       p.start_angle_rad = c.start_angle_rad();
       p.clockwise = c.clockwise();
       p.revolutions = c.revolutions() == 0.0 ? 1.0 : c.revolutions();
+      p.ramp_s = c.ramp_s();
       return std::make_shared<control::CircleTrajectory>(p);
     }
     case netmc::v1::Trajectory::kEllipse: {
@@ -120,6 +121,7 @@ std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1:
       p.max_speed_m_s = l.max_speed_m_s();
       p.max_acceleration_m_s2 = l.max_acceleration_m_s2();
       p.corner_speed_m_s = l.corner_speed_m_s();
+      p.max_jerk_m_s3 = l.max_jerk_m_s3();
       return std::make_shared<control::PolylineTrajectory>(p);
     }
     case netmc::v1::Trajectory::kSpline: {
