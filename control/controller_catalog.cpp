@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "control/cross_coupling/feedforward_pid_contouring.hpp"
+#include "control/cross_coupling/tustin_cross_coupling.hpp"
 #include "control/data_driven/data_driven_contouring.hpp"
 
 namespace netmc::control {
@@ -10,8 +12,9 @@ namespace {
 std::string usage() {
   return "expected mfa-dtsmc, mfac, gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, "
          "gtcf-darc-cogging, ltcf-darc-cogging, gtcf-adrc, AXIS or "
-         "AXIS+COMPENSATOR with AXIS one of adrc, pid and "
-         "COMPENSATOR one of pidccc, ilccc";
+         "AXIS+COMPENSATOR with AXIS one of adrc, pid, ffpid and "
+         "COMPENSATOR one of pidccc, ilccc, lpccc, qftccc (paper 004: ffpid uncoupled, ffpid+lpccc eq. 13, "
+         "ffpid+qftccc eq. 20)";
 }
 
 std::unique_ptr<AxisController> make_axis(std::string_view name, const ControllerSettings& s,
@@ -26,13 +29,32 @@ std::unique_ptr<ContourCompensator> make_compensator(std::string_view name,
   if (name.empty()) return std::make_unique<NoContourCompensation>();
   if (name == "pidccc") return std::make_unique<PidCrossCoupling>(s.pidccc, h);
   if (name == "ilccc") return std::make_unique<IterativeLearningCrossCoupling>(s.ilccc, h);
+  if (name == "lpccc") return std::make_unique<TustinCrossCoupling>(make_low_pass_pid_cross_coupling(s.lpccc, h));
+  if (name == "qftccc") return std::make_unique<TustinCrossCoupling>(make_qft_cross_coupling(h));
   return nullptr;
+}
+
+// Paper 004: ffpid[+COMPENSATOR]; its axes need the reference acceleration, so it is a
+// controller of its own rather than an AXIS of ContouringController.
+std::unique_ptr<ContourController> make_feedforward_pid_contouring(std::string_view name,
+                                                                   const ControllerSettings& settings,
+                                                                   double sample_period_s,
+                                                                   const ReferenceTrajectory& trajectory) {
+  const std::size_t plus = name.find('+');
+  const std::string_view compensator_name = plus == std::string_view::npos ? std::string_view{} : name.substr(plus + 1);
+  auto compensator = make_compensator(compensator_name, settings, sample_period_s);
+  if (!compensator || (plus != std::string_view::npos && compensator_name.empty())) {
+    throw std::invalid_argument("controller: unknown name '" + std::string(name) + "' (" + usage() + ")");
+  }
+  return std::make_unique<FeedforwardPidContouring>(settings.ffpid_x, settings.ffpid_y, sample_period_s,
+                                                    make_contour_error_estimator(settings.estimator, trajectory.clone()),
+                                                    std::move(compensator));
 }
 
 }  // namespace
 
 std::vector<std::string> axis_controller_names() { return {"adrc", "pid"}; }
-std::vector<std::string> contour_compensator_names() { return {"pidccc", "ilccc"}; }
+std::vector<std::string> contour_compensator_names() { return {"pidccc", "ilccc", "lpccc", "qftccc"}; }
 
 ContouringController make_contouring_controller(std::string_view name,
                                                 const ControllerSettings& settings,
@@ -102,6 +124,7 @@ std::unique_ptr<ContourController> make_contour_controller(std::string_view name
     return std::make_unique<TaskSpaceDiarc>(settings.diarc, sample_period_s, make_task_frame(trajectory), filter);
   }
   if (name == "ltcf-diarc") return std::make_unique<TaskSpaceDiarc>(settings.diarc, sample_period_s, nullptr, filter, settings.local_frame_rate);
+  if (name == "ffpid" || name.starts_with("ffpid+")) return make_feedforward_pid_contouring(name, settings, sample_period_s, trajectory);
   return std::make_unique<ContouringController>(
       make_contouring_controller(name, settings, sample_period_s, trajectory.clone()));
 }

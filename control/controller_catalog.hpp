@@ -7,9 +7,11 @@
 #include <vector>
 
 #include "control/axis/adrc_controller.hpp"
+#include "control/axis/feedforward_pid_axis.hpp"
 #include "control/cross_coupling/contouring_controller.hpp"
 #include "control/data_driven/compact_form_mfac.hpp"
 #include "control/data_driven/mfa_dtsmc_axis.hpp"
+#include "control/frequency/qft_bounds.hpp"
 #include "control/cross_coupling/iterative_learning_cross_coupling.hpp"
 #include "control/axis/pid_axis_controller.hpp"
 #include "control/cross_coupling/pid_cross_coupling.hpp"
@@ -46,11 +48,16 @@ struct ControllerSettings {
   CompactFormMfacGains mfac;
   std::optional<CompactFormMfacGains> mfac_y;
   std::optional<PidAxisGains> pid_y;
+  // Paper 004 (ffpid): the per-axis loops of eq. 2 with feedforward, Tables 1 and 2, and the
+  // PID-type cross-coupling of eq. 13 (lpccc), Table 3.
+  FeedforwardPidGains ffpid_x = paper004_x_axis_gains();
+  FeedforwardPidGains ffpid_y = paper004_y_axis_gains();
+  FilteredPidCrossCouplingGains lpccc;
   std::string estimator = "curvature";
 };
 
 std::vector<std::string> axis_controller_names();        // adrc, pid
-std::vector<std::string> contour_compensator_names();    // pidccc, ilccc
+std::vector<std::string> contour_compensator_names();    // pidccc, ilccc, lpccc, qftccc
 // Throws std::invalid_argument("controller: ...") for an unknown name or invalid gain.
 // `trajectory` is needed by the foot-point estimators (settings.estimator newton, steffensen).
 ContouringController make_contouring_controller(std::string_view name,
@@ -61,7 +68,8 @@ ContouringController make_contouring_controller(std::string_view name,
 // Every controller by name: AXIS[+COMPENSATOR] as above, or a task-space contouring controller
 // gtcf-sarc / ltcf-sarc (thesis ch. 2), gtcf-darc / ltcf-darc / gtcf-diarc / ltcf-diarc
 // (thesis ch. 3), gtcf-darc-cogging / ltcf-darc-cogging (thesis ch. 4) or gtcf-adrc (task-space ADRC) on the contour of `trajectory`, or paper 002's
-// data-driven contouring mfa-dtsmc / mfac.
+// data-driven contouring mfa-dtsmc / mfac, or paper 004's per-axis loops with acceleration
+// feedforward, ffpid[+COMPENSATOR] (ffpid, ffpid+lpccc, ffpid+qftccc).
 std::unique_ptr<ContourController> make_contour_controller(std::string_view name,
                                                            const ControllerSettings& settings,
                                                            double sample_period_s,
