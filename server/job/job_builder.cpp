@@ -319,6 +319,43 @@ control::PidAxisGains build_pid(const netmc::v1::PidGains& p, control::PidAxisGa
   return g;
 }
 
+// A gain the spec sets, checked; the error names its field.
+void set_positive(bool has, double value, double& target, const std::string& field) {
+  if (!has) return;
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw std::invalid_argument(field + ": expected a positive finite number, got " + fmt::format("{:g}", value));
+  }
+  target = value;
+}
+void set_finite(bool has, double value, double& target, const std::string& field) {
+  if (!has) return;
+  if (!std::isfinite(value)) throw std::invalid_argument(field + ": expected a finite number, got " + fmt::format("{:g}", value));
+  target = value;
+}
+
+// Paper 004's per-axis loop: the fields set in `f` over the axis's table values.
+control::FeedforwardPidGains build_feedforward_pid(const netmc::v1::FeedforwardPidGains& f,
+                                                   control::FeedforwardPidGains g, const std::string& field) {
+  set_positive(f.has_mass_kg(), f.mass_kg(), g.mass_kg, field + ".mass_kg");
+  set_positive(f.has_bandwidth_hz(), f.bandwidth_hz(), g.bandwidth_hz, field + ".bandwidth_hz");
+  set_positive(f.has_alpha(), f.alpha(), g.alpha, field + ".alpha");
+  set_positive(f.has_low_pass_damping(), f.low_pass_damping(), g.low_pass_damping, field + ".low_pass_damping");
+  set_finite(f.has_feedforward_fraction(), f.feedforward_fraction(), g.feedforward_fraction,
+             field + ".feedforward_fraction");
+  return g;
+}
+
+control::FilteredPidCrossCouplingGains build_low_pass_pid(const netmc::v1::LowPassPidGains& l,
+                                                          control::FilteredPidCrossCouplingGains g) {
+  const std::string field = "controller.lpccc";
+  set_finite(l.has_kp(), l.kp(), g.kp, field + ".kp");
+  set_finite(l.has_ki(), l.ki(), g.ki, field + ".ki");
+  set_finite(l.has_kd(), l.kd(), g.kd, field + ".kd");
+  set_positive(l.has_low_pass_hz(), l.low_pass_hz(), g.low_pass_hz, field + ".low_pass_hz");
+  set_positive(l.has_low_pass_damping(), l.low_pass_damping(), g.low_pass_damping, field + ".low_pass_damping");
+  return g;
+}
+
 control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   control::ControllerSettings s;
   s.adrc = build_adrc(c.adrc(), s.adrc, "controller.adrc");
@@ -343,6 +380,9 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   if (c.pidccc().has_kp()) s.pidccc.kp = c.pidccc().kp();
   if (c.pidccc().has_ki()) s.pidccc.ki = c.pidccc().ki();
   if (c.pidccc().has_kd()) s.pidccc.kd = c.pidccc().kd();
+  s.ffpid_x = build_feedforward_pid(c.ffpid_x(), s.ffpid_x, "controller.ffpid_x");
+  s.ffpid_y = build_feedforward_pid(c.ffpid_y(), s.ffpid_y, "controller.ffpid_y");
+  s.lpccc = build_low_pass_pid(c.lpccc(), s.lpccc);
   const auto& i = c.ilccc();
   if (i.has_kcp()) s.ilccc.kcp = i.kcp();
   if (i.has_kcd()) s.ilccc.kcd = i.kcd();

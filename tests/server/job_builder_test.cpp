@@ -264,5 +264,75 @@ TEST(JobBuilder, PlantOverrideErrorsNameTheField) {
             std::string::npos);
 }
 
+// Paper 004: the per-axis loops (ffpid_x, ffpid_y), the PID-type cross-coupling (lpccc), the
+// circle's ramp and the polyline's jerk limit; unset gains take Tables 1-3.
+TEST(JobBuilder, Paper004GainsAndMotions) {
+  auto spec = parse_job_spec_json(R"({
+    "trajectory": {"circle": {"radius_m": 0.0636619772, "period_s": 2, "ramp_s": 0.2}},
+    "plant": "stage004",
+    "controller": {"name": "ffpid+lpccc", "estimator": "tangent",
+                   "ffpid_x": {"bandwidth_hz": 40, "feedforward_fraction": 0.9},
+                   "ffpid_y": {"mass_kg": 32, "alpha": 2.5, "low_pass_damping": 0.5},
+                   "lpccc": {"kp": 4e5, "low_pass_hz": 120}},
+    "sample_period_s": 5e-5,
+    "duration_s": 2.5
+  })", "test");
+  apply_defaults(spec);
+  const sim::ContourJob job = build_contour_job(spec);
+  const auto& c = job.controller;
+  EXPECT_EQ(c.ffpid_x.mass_kg, 24.0);  // Table 1
+  EXPECT_EQ(c.ffpid_x.bandwidth_hz, 40.0);
+  EXPECT_EQ(c.ffpid_x.alpha, 3.0);
+  EXPECT_EQ(c.ffpid_x.low_pass_damping, 0.7);
+  EXPECT_EQ(c.ffpid_x.feedforward_fraction, 0.9);
+  EXPECT_EQ(c.ffpid_y.mass_kg, 32.0);
+  EXPECT_EQ(c.ffpid_y.bandwidth_hz, 50.0);  // Table 2
+  EXPECT_EQ(c.ffpid_y.alpha, 2.5);
+  EXPECT_EQ(c.ffpid_y.low_pass_damping, 0.5);
+  EXPECT_EQ(c.ffpid_y.feedforward_fraction, 0.85);
+  EXPECT_EQ(c.lpccc.kp, 4e5);
+  EXPECT_EQ(c.lpccc.ki, 1e8);  // Table 3
+  EXPECT_EQ(c.lpccc.kd, 3.0);
+  EXPECT_EQ(c.lpccc.low_pass_hz, 120.0);
+  EXPECT_EQ(c.lpccc.low_pass_damping, 0.707);
+  EXPECT_EQ(job.cycles(), 50001u);  // 2.5 s at 20 kHz: the circle's 2 s and 0.5 s at rest
+  EXPECT_NE(job.trajectory->describe().find("ramp=0.2 s"), std::string::npos);
+  EXPECT_EQ(job.trajectory->sample(2.2).velocity.norm(), 0.0);
+  const std::string detail = job.make_controller()->describe();
+  EXPECT_NE(detail.find("lpccc"), std::string::npos) << detail;
+  EXPECT_NE(detail.find("m=32 kg"), std::string::npos) << detail;
+
+  const auto sharp = parse_job_spec_json(R"({"trajectory": {"polyline": {
+    "points": [{"x_m": 0, "y_m": 0}, {"x_m": 0.1, "y_m": 0}, {"x_m": 0.1, "y_m": 0.1}],
+    "max_speed_m_s": 0.1, "max_acceleration_m_s2": 1, "max_jerk_m_s3": 10}}})", "test");
+  auto sharp_spec = spec;
+  *sharp_spec.mutable_trajectory() = sharp.trajectory();
+  EXPECT_NEAR(build_contour_job(sharp_spec).trajectory->duration_s(), 2.4, 1e-12);
+
+  const auto error_with = [&](const std::string& controller) {
+    auto bad = spec;
+    *bad.mutable_controller() = parse_job_spec_json(R"({"controller": )" + controller + "}", "test").controller();
+    return error_of(bad);
+  };
+  EXPECT_NE(error_with(R"({"name": "ffpid", "ffpid_x": {"mass_kg": -24}})").find("controller.ffpid_x.mass_kg: expected a positive"),
+            std::string::npos);
+  EXPECT_NE(error_with(R"({"name": "ffpid", "ffpid_y": {"alpha": 0}})").find("controller.ffpid_y.alpha"), std::string::npos);
+  EXPECT_NE(error_with(R"({"name": "ffpid", "ffpid_y": {"low_pass_damping": -1}})").find("controller.ffpid_y.low_pass_damping"),
+            std::string::npos);
+  EXPECT_NE(error_with(R"({"name": "ffpid+lpccc", "lpccc": {"low_pass_hz": 0}})").find("controller.lpccc.low_pass_hz"),
+            std::string::npos);
+  // alpha f_bw = 3 x 5000 Hz is beyond the 10 kHz Nyquist frequency of the 20 kHz loop.
+  const std::string nyquist = error_with(R"({"name": "ffpid", "ffpid_x": {"bandwidth_hz": 5000}})");
+  EXPECT_NE(nyquist.find("controller: ffpid alpha * bandwidth_hz"), std::string::npos) << nyquist;
+  EXPECT_NE(error_with(R"({"name": "ffpid+qft"})").find("ffpid+qftccc"), std::string::npos);
+
+  auto long_ramp = spec;
+  long_ramp.mutable_trajectory()->mutable_circle()->set_ramp_s(1.5);
+  EXPECT_NE(error_of(long_ramp).find("trajectory: circle ramp"), std::string::npos);
+  auto corner_speed = sharp_spec;
+  corner_speed.mutable_trajectory()->mutable_polyline()->set_corner_speed_m_s(0.05);
+  EXPECT_NE(error_of(corner_speed).find("trajectory: polyline corner speed"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace netmc::job
