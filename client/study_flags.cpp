@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "client/presets.hpp"
 #include "client/spec_syntax.hpp"
 #include "client/spec_validation.hpp"
 #include "server/job/job_builder.hpp"
@@ -165,13 +166,18 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
                   "Distributed runs: the axis names (netmc-axis --axes) that the contour's x, y (and z) "
                   "drive, e.g. stage1.x,stage1.y (default x,y; x,y,z for a contour in space)")
       ->type_name("X,Y");
-  app->add_option("--preset", flags.preset, "Named study: seed001 (paper 001, Table 1), seed001-ellipse, seed001-line, seed001-long-delay, seed001-bursty, thesis-ellipse, thesis-circle, thesis-darc, thesis-ellipse-delay, thesis-spatial");
+  std::string presets;
+  for (const auto& name : preset_names()) presets += (presets.empty() ? "" : ", ") + name;
+  app->add_option("--preset", flags.preset, "Named study (default seed001, paper 001's Table 1): " + presets);
   app->add_option("--spec", flags.spec_file, "Job spec as JSON (protobuf JSON mapping of netmc.v1.JobSpec)");
   app->add_option("--trajectory", flags.trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. (or feed=..,amax=.. instead of period) | line:x0=..,y0=..,x1=..,y1=..,duration=.. | "
                   "lissajous:ax=20mm,ay=15mm,p=3,q=2,period=20s[,phase=..,cx=..,cy=..] (or feed=..,amax=.. instead of period) | "
                   "polyline:points=0,0;10mm,0;10mm,10mm,vmax=10mm/s,amax=100mm/s2[,corner=..] | "
                   "spline:points=X,Y;X,Y;...,feed=10mm/s,amax=50mm/s2[,at=..] (points closed when the last equals the first)");
-  app->add_option("--controller", flags.controllers, "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc ...; task space: gtcf-sarc, ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, gtcf-adrc");
+  app->add_option("--controller", flags.controllers,
+                  "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc ...; task space: gtcf-sarc, "
+                  "ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, gtcf-darc-cogging, ltcf-darc-cogging, "
+                  "gtcf-adrc; paper 002: mfa-dtsmc, mfac; paper 004: ffpid, ffpid+lpccc, ffpid+qftccc");
   app->add_option("--delay", flags.delay, "Loop delay on the controller->actuator link: none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=.. | pareto:scale=..,shape=.. | markov:good=A..B,bad=C..D,p_gb=..,p_bg=.. | trace:FILE.csv");
   app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);
   add_job_override_flags(app, flags);
@@ -181,7 +187,7 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
 
 void add_job_override_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--plant", flags.plant,
-                  "seed001 | ballscrew | linmotor | stage004, with parameter overrides for every axis or one: "
+                  "seed001 | ballscrew | linmotor | linmotor-flex | stage004, with parameter overrides for every axis or one: "
                   "ballscrew:load_kg=3 | ballscrew:y.load_kg=3,x.damping_n_m_s_rad=0.3 "
                   "(netmc sim --plant-parameters NAME lists the keys)")
       ->type_name("NAME[:[AXIS.]KEY=VALUE,...]");
