@@ -54,7 +54,7 @@ Takes every flag and preset of netmc sim; --quiet prints only the final table.)"
   netmc cee --points 20000 --max-lag-ms 5 --normal-sd-um 10)");
   app.get_subcommand("qft")->footer(R"(Examples:
   netmc qft                                # eq. 20 against the bounds, per design frequency
-  netmc qft --ccc eq20,eq19,pidccc         # paper 004's three cross-coupling controllers
+  netmc qft --ccc eq20,eq19,lpccc          # paper 004's three cross-coupling controllers
   netmc qft --plot figures                 # ... plus Bode and Nichols figures (PNG, SVG))");
   for (CLI::App* subcommand : app.get_subcommands({})) add_verbosity_flags(subcommand);
   try {

@@ -53,13 +53,13 @@ std::vector<CrossCouplingDesign> designs() {
   return {
       {"eq20", "paper 004, eq. 20: the QFT design", &control::paper004_eq20_cross_coupling, eq20},
       {"eq19", "paper 004, eq. 19: the first try", &control::paper004_eq19_cross_coupling, {{35.0, "", "1.056"}}},
-      {"pidccc", "paper 004, eq. 13 with Table 3: PID-type cross-coupling", &table3_pid, {{10.0, "0.53", ""}}},
+      {"lpccc", "paper 004, eq. 13 with Table 3: PID-type cross-coupling", &table3_pid, {{10.0, "0.53", ""}}},
   };
 }
 
 std::vector<CrossCouplingDesign> selected_designs(const std::string& text) {
   const auto all = designs();
-  const std::string choices = "eq20, eq19 or pidccc";
+  const std::string choices = "eq20, eq19 or lpccc";
   std::vector<CrossCouplingDesign> chosen;
   const auto items = split_list(text);
   if (items.empty()) throw std::invalid_argument("--ccc: expected " + choices + " (comma separated)");
@@ -240,7 +240,7 @@ std::function<int()> add_qft_command(CLI::App& app) {
       "qft", "Check paper 004's QFT bounds for a cross-coupled contour controller C(s) (|S|, |T| vs |T_u|)");
   qft->add_option("--ccc", flags->ccc,
                   "Cross-coupling controllers, comma separated: eq20 (QFT design, default), eq19 (first try), "
-                  "pidccc (eq. 13, Table 3)")
+                  "lpccc (eq. 13, Table 3: the PID-CCC with its low-pass, as in netmc sim)")
       ->type_name("NAME[,...]");
   qft->add_option("--plot", flags->plot_dir, "Write Bode and Nichols figures (PNG, SVG) into DIR")->type_name("DIR");
   qft->add_option("--plot-format", flags->plot_format, "Figure formats with --plot: png, svg or png,svg")

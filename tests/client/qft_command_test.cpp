@@ -70,7 +70,7 @@ TEST(NetmcQft, Eq20TableReproducesTheDigest) {
 }
 
 TEST(NetmcQft, Eq19FailsAt35HzAndThePidCrossCouplingAt10Hz) {
-  const NetmcOutcome result = run_netmc_captured({"qft", "--ccc", "eq19,pidccc"});
+  const NetmcOutcome result = run_netmc_captured({"qft", "--ccc", "eq19,lpccc"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(result.out.find("eq. 20"), std::string::npos) << "only the chosen controllers";
   const auto eq19 = table_rows(result.out, "paper 004, eq. 19");
@@ -88,7 +88,7 @@ TEST(NetmcQft, BadControllerNameExitsWith2NamingTheFlag) {
     const NetmcOutcome result = run_netmc_captured({"qft", "--ccc", value});
     EXPECT_EQ(result.exit_code, 2) << value;
     EXPECT_EQ(result.err.rfind("netmc: error: --ccc: ", 0), 0u) << value << "\n" << result.err;
-    EXPECT_NE(result.err.find("eq20, eq19 or pidccc"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("eq20, eq19 or lpccc"), std::string::npos) << result.err;
     EXPECT_EQ(result.out, "") << value;
   }
   const NetmcOutcome help = run_netmc_captured({"qft", "--help"});
@@ -101,9 +101,9 @@ TEST(NetmcQft, PlotWritesBodeAndNicholsFigures) {
   if (!find_gnuplot()) GTEST_SKIP() << "gnuplot is not installed (Debian package gnuplot-nox)";
   const auto dir = fs::temp_directory_path() / "netmc_qft_test_figures";
   fs::remove_all(dir);
-  const NetmcOutcome result = run_netmc_captured({"qft", "--ccc", "eq20,pidccc", "--plot", dir.string()});
+  const NetmcOutcome result = run_netmc_captured({"qft", "--ccc", "eq20,lpccc", "--plot", dir.string()});
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  for (const char* name : {"qft-eq20-bode", "qft-eq20-nichols", "qft-pidccc-bode", "qft-pidccc-nichols"}) {
+  for (const char* name : {"qft-eq20-bode", "qft-eq20-nichols", "qft-lpccc-bode", "qft-lpccc-nichols"}) {
     for (const char* extension : {".png", ".svg"}) {
       const auto file = dir / (std::string(name) + extension);
       ASSERT_TRUE(fs::exists(file)) << file;
