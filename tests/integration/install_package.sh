@@ -22,7 +22,7 @@ for program in netmc netmc-server netmc-axis; do
   [ "$out" = "$program $version" ] || { echo "FAIL: $program --version said '$out'"; exit 1; }
 done
 echo "installed: netmc, netmc-server, netmc-axis --version: $version"
-for file in include/netmc/control/adrc_controller.hpp include/netmc/plant/plant_catalog.hpp \
+for file in include/netmc/control/axis/adrc_controller.hpp include/netmc/plant/plant_catalog.hpp \
   include/netmc/netsim/delay_model.hpp share/netmc/examples/etc-netmc/server.env \
   share/netmc/examples/dds-profiles/udp_only.xml share/doc/netmc/LICENSE; do
   [ -f "$prefix/$file" ] || { echo "FAIL: $file not installed"; exit 1; }
@@ -79,7 +79,7 @@ dpkg-deb --fsys-tarfile "$deb" | tar -xO ./usr/lib/systemd/system/netmc-axis@.se
 grep -q "^ExecStart=/usr/bin/netmc-axis " "$tmp/unit" ||
   { echo "FAIL: the packaged unit does not name /usr/bin/netmc-axis"; exit 1; }
 dpkg-deb -c "$dev" >"$tmp/dev-contents"
-grep -q " ./usr/include/netmc/control/adrc_controller.hpp$" "$tmp/dev-contents" &&
+grep -q " ./usr/include/netmc/control/axis/adrc_controller.hpp$" "$tmp/dev-contents" &&
   [[ "$(dpkg-deb -f "$dev" Depends)" == *libeigen3-dev* ]] ||
   { echo "FAIL: netmc-dev lacks the headers or the Eigen dependency"; exit 1; }
 echo "$(basename "$dev"): $(du -k "$dev" | cut -f1) KiB, Depends: $(dpkg-deb -f "$dev" Depends)"
