@@ -202,7 +202,7 @@ TEST(FlexibleLinearMotorAxis, CatalogOverridesByKey) {
   AxisSet set = make_plant_set("linmotor-flex", 2, {AxisOverrides{}, y});
   const std::string x_text = set.axes[0]->describe();
   const std::string y_text = set.axes[1]->describe();
-  EXPECT_NE(x_text.find("mode 150 Hz zeta 0.35"), std::string::npos) << x_text;
+  EXPECT_NE(x_text.find("mode 150 Hz zeta 0.45"), std::string::npos) << x_text;
   EXPECT_NE(y_text.find("mode 45 Hz zeta 0.2"), std::string::npos) << y_text;
   EXPECT_NE(y_text.find("current loop 1200 Hz"), std::string::npos) << y_text;
   // A payload rides on the carriage: total and carriage mass both grow by it.
