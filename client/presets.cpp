@@ -201,6 +201,29 @@ StudyPlan thesis_darc() {
   return plan;
 }
 
+// The thesis's load sets of chapters 3 and 4 as plant overrides of a linmotor job: Set1 as is,
+// Set2 a 5 kg payload (M1 0.12 -> 0.19, M2 0.55 -> 0.62 V/(m/s^2)), Set3 +0.8 V on the Y input
+// from 2.2 to 5.2 s (digest 2.7).
+void apply_thesis_set(netmc::v1::JobSpec& job, int set) {
+  if (set == 2) {
+    for (const char* axis : {"x", "y"}) {
+      auto& settings = *job.add_plant_axes();
+      settings.set_axis(axis);
+      auto& load = *settings.add_parameters();
+      load.set_key("load_v_s2_m");
+      load.set_value(0.07);
+    }
+  }
+  if (set == 3) {
+    auto& settings = *job.add_plant_axes();
+    settings.set_axis("y");
+    auto& step = *settings.mutable_disturbance()->mutable_step();
+    step.set_amplitude(0.8);
+    step.set_on_s(2.2);
+    step.set_off_s(5.2);
+  }
+}
+
 // Thesis Tables 3-1 and 3-2 (digest 2.7): Exp I (eq. 3-48) and Exp II (eq. 3-49), each under
 // Set1 (no load), Set2 (5 kg payload: M1 0.12 -> 0.19, M2 0.55 -> 0.62 V/(m/s^2)) and Set3
 // (+0.8 V on the Y input from 2.2 to 5.2 s), for C1 GTCF-DARC, C2 GTCF-DIARC and C3 LTCF-DIARC;
@@ -231,23 +254,7 @@ StudyPlan thesis_darc_sets() {
     for (const Row& row : rows) {
       const std::string label = fmt::format("{} {} Set{}", row.controller, experiment.name, row.set);
       auto job = thesis_job(experiment.trajectory, row.controller, label, 2.0);
-      if (row.set == 2) {
-        for (const char* axis : {"x", "y"}) {
-          auto& settings = *job.add_plant_axes();
-          settings.set_axis(axis);
-          auto& load = *settings.add_parameters();
-          load.set_key("load_v_s2_m");
-          load.set_value(0.07);
-        }
-      }
-      if (row.set == 3) {
-        auto& settings = *job.add_plant_axes();
-        settings.set_axis("y");
-        auto& step = *settings.mutable_disturbance()->mutable_step();
-        step.set_amplitude(0.8);
-        step.set_on_s(2.2);
-        step.set_off_s(5.2);
-      }
+      apply_thesis_set(job, row.set);
       plan.jobs.push_back(job);
       const bool first = experiment.name == std::string_view("I");
       plan.paper.push_back({label, (first ? row.rms_i : row.rms_ii) * 1e-6, (first ? row.max_i : row.max_ii) * 1e-6});
@@ -296,23 +303,7 @@ StudyPlan thesis_cogging() {
       const std::string label = fmt::format("{} {} Set{}", row.label, experiment.name, row.set);
       auto job = thesis_job(experiment.trajectory, "gtcf-darc-cogging", label, 2.0);
       job.mutable_controller()->mutable_task_space()->set_cogging_adaptation(row.cogging_adaptation);
-      if (row.set == 2) {
-        for (const char* axis : {"x", "y"}) {
-          auto& settings = *job.add_plant_axes();
-          settings.set_axis(axis);
-          auto& load = *settings.add_parameters();
-          load.set_key("load_v_s2_m");
-          load.set_value(0.07);
-        }
-      }
-      if (row.set == 3) {
-        auto& settings = *job.add_plant_axes();
-        settings.set_axis("y");
-        auto& step = *settings.mutable_disturbance()->mutable_step();
-        step.set_amplitude(0.8);
-        step.set_on_s(2.2);
-        step.set_off_s(5.2);
-      }
+      apply_thesis_set(job, row.set);
       plan.jobs.push_back(job);
       const bool first = experiment.name == std::string_view("I");
       plan.paper.push_back({label, (first ? row.rms_i : row.rms_ii) * 1e-6, (first ? row.max_i : row.max_ii) * 1e-6});

@@ -33,13 +33,17 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     plan = make_preset(f.preset.empty() ? "seed001" : f.preset);
   }
 
-  const bool changes_setup = !f.trajectory.empty() || !f.plant.empty() || !f.delay.empty() ||
+  const bool changes_setup = !f.trajectory.empty() || !f.delay.empty() ||
                              !f.uplink_delay.empty() || !f.loss.empty() || !f.uplink_loss.empty() ||
                              !f.sample_period.empty() || !f.duration.empty() || !f.sensor.empty() ||
                              !f.initial_position.empty() || !f.disturbances.empty();
   if (changes_setup) {
     plan.paper.clear();
     plan.title = "custom study (based on " + (f.spec_file.empty() ? "preset " + (f.preset.empty() ? std::string("seed001") : f.preset) : f.spec_file) + ")";
+  } else if (!f.plant.empty()) {
+    // The same experiment on another model of the machine (linmotor-flex for linmotor): the
+    // paper's figures stay beside it as the reference.
+    plan.title += " -- plant " + f.plant;
   }
 
   if (!f.controllers.empty()) {
@@ -57,10 +61,9 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
 
   for (auto& job : plan.jobs) {
     if (!f.trajectory.empty()) *job.mutable_trajectory() = parse_trajectory(f.trajectory);
-    if (!f.plant.empty()) {
-      job.clear_plant_axes();  // overrides belong to the plant they were written for
-      parse_plant(f.plant, job);
-    }
+    // The job's own overrides (a preset's payload, its disturbance) stay; the flag's are added
+    // after them, and keys the new plant does not have are refused when the job is built.
+    if (!f.plant.empty()) parse_plant(f.plant, job);
     for (const auto& disturbance : f.disturbances) parse_disturbance(disturbance, job);
     if (!f.delay.empty()) *job.mutable_downlink()->mutable_delay() = parse_delay(f.delay, "--delay");
     if (!f.uplink_delay.empty()) {
@@ -145,7 +148,7 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
                             !f.ilc.empty() || !f.pidccc.empty() || !f.pid.empty() ||
                             !f.estimator.empty() || !f.deadline.empty() || !f.compute_delay.empty() ||
                             !f.command_limit.empty() || !f.divergence_limit.empty() || !f.clock.empty() ||
-                            !f.axes.empty();
+                            !f.axes.empty() || !f.plant.empty();
     for (const auto& job : plan.jobs) {
       try {
         job::build_contour_job(job);

@@ -244,3 +244,38 @@ TEST(SpecSyntax, DisturbancePartsOnOneAxis) {
 
 }  // namespace
 }  // namespace netmc::cli
+
+#include "client/study_flags.hpp"
+#include "server/job/job_builder.hpp"
+
+namespace netmc::cli {
+namespace {
+
+// --plant on a preset runs the same experiment on another model: the jobs keep their own plant
+// overrides (a set's payload) and the paper's table stays beside them.
+TEST(StudyFlags, PlantFlagKeepsThePresetsOverridesAndPaperTable) {
+  StudyFlags flags;
+  flags.preset = "thesis-darc-sets";
+  flags.plant = "linmotor-flex";
+  const StudyPlan plan = plan_from_flags(flags);
+  EXPECT_FALSE(plan.paper.empty());
+  EXPECT_NE(plan.title.find("plant linmotor-flex"), std::string::npos) << plan.title;
+  const auto set2 = std::find_if(plan.jobs.begin(), plan.jobs.end(),
+                                 [](const auto& job) { return job.name() == "gtcf-darc I Set2"; });
+  ASSERT_NE(set2, plan.jobs.end());
+  EXPECT_EQ(set2->plant(), "linmotor-flex");
+  ASSERT_EQ(set2->plant_axes_size(), 2);
+  EXPECT_EQ(set2->plant_axes(1).parameters(0).key(), "load_v_s2_m");
+  // A key the new plant lacks is refused when the job is built, naming it.
+  flags.plant = "stage004";
+  const StudyPlan other = plan_from_flags(flags);
+  try {
+    job::build_contour_job(other.jobs.at(3));  // gtcf-darc I Set2
+    FAIL() << "stage004 took linmotor's payload key";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("stage004 has no parameter 'load_v_s2_m'"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace netmc::cli

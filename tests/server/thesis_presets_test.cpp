@@ -32,6 +32,13 @@ sim::IterationRecord run(const netmc::v1::JobSpec& spec, Shortened length) {
   return sim::ContourJobRunner(job).run_iteration();
 }
 
+// The plan's job labelled `label` (a failure, and the first job, when there is none).
+netmc::v1::JobSpec job_named(const StudyPlan& plan, const std::string& label) {
+  const auto it = std::find_if(plan.jobs.begin(), plan.jobs.end(), [&](const auto& j) { return j.name() == label; });
+  EXPECT_NE(it, plan.jobs.end()) << label;
+  return it == plan.jobs.end() ? plan.jobs.front() : *it;
+}
+
 void expect_contours_within(const StudyPlan& plan, const std::string& label, Shortened length,
                             double rms_bound_m, double max_bound_m) {
   const auto job = std::find_if(plan.jobs.begin(), plan.jobs.end(),
@@ -128,11 +135,7 @@ namespace {
 TEST(ThesisPresets, SetsTwoAndThreeChangeOnlyThePlant) {
   const StudyPlan plan = make_preset("thesis-darc-sets");
   ASSERT_EQ(plan.jobs.size(), 18u);
-  const auto find = [&](const std::string& label) {
-    const auto it = std::find_if(plan.jobs.begin(), plan.jobs.end(), [&](const auto& j) { return j.name() == label; });
-    EXPECT_NE(it, plan.jobs.end()) << label;
-    return *it;
-  };
+  const auto find = [&](const std::string& label) { return job_named(plan, label); };
   const auto set2 = job::build_contour_job(find("gtcf-diarc I Set2"));
   EXPECT_NE(set2.axes[0]->describe().find("M=0.19"), std::string::npos) << set2.axes[0]->describe();
   EXPECT_NE(set2.axes[1]->describe().find("M=0.62"), std::string::npos) << set2.axes[1]->describe();
@@ -159,11 +162,7 @@ namespace {
 TEST(ThesisPresets, CoggingEstimatesFindTheStagesCogging) {
   const StudyPlan plan = make_preset("thesis-cogging");
   ASSERT_EQ(plan.jobs.size(), 12u);
-  const auto find = [&](const std::string& label) {
-    const auto it = std::find_if(plan.jobs.begin(), plan.jobs.end(), [&](const auto& j) { return j.name() == label; });
-    EXPECT_NE(it, plan.jobs.end()) << label;
-    return *it;
-  };
+  const auto find = [&](const std::string& label) { return job_named(plan, label); };
   const auto c2 = run(find("C2 II Set1"), {10.0, 2.0}).metrics;
   const auto c1 = run(find("C1 II Set1"), {10.0, 2.0}).metrics;
   ASSERT_EQ(c2.final_estimates.size(), 20u);
