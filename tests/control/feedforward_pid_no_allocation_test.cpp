@@ -3,25 +3,11 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 
 #include "control/controller_catalog.hpp"
 #include "control/trajectory/circle_trajectory.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "tests/support/allocation_counter.hpp"
 
 namespace netmc::control {
 namespace {
@@ -37,13 +23,13 @@ TEST(NoAllocation, FeedforwardPidControllersStepWithoutAllocating) {
   for (const char* name : {"ffpid", "ffpid+lpccc", "ffpid+qftccc"}) {
     auto controller = make_contour_controller(name, settings, 5e-5, circle);
     controller->begin_iteration(circle.sample(0.0).position, 6000);
-    const long before = g_allocations.load();
+    const long before = netmc::testing::heap_allocations();
     double sum = 0.0;
     for (std::size_t k = 0; k < 6000; ++k) {  // through the ramps and the hold at rest
       const ReferencePoint reference = circle.sample(5e-5 * static_cast<double>(k));
       sum += controller->step(k, reference, reference.position + Eigen::Vector2d(1e-7, -2e-7)).command.sum();
     }
-    EXPECT_EQ(g_allocations.load() - before, 0) << name;
+    EXPECT_EQ(netmc::testing::heap_allocations() - before, 0) << name;
     EXPECT_TRUE(std::isfinite(sum)) << name;
   }
 }

@@ -3,25 +3,11 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 
 #include "plant/plant_catalog.hpp"
 #include "plant/position_sensor.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "tests/support/allocation_counter.hpp"
 
 namespace netmc::plant {
 namespace {
@@ -30,7 +16,7 @@ TEST(NoAllocation, AdvanceAndMeasureDoNotAllocate) {
   for (const std::string& name : plant_names()) {
     AxisSet set = make_plant_set(name, 3);
     PositionSensor sensor({0.5e-6, 1e-7}, 3, 1);
-    const long before = g_allocations.load();
+    const long before = netmc::testing::heap_allocations();
     for (auto& axis : set.axes) {
       axis->reset(0.0, 0.0);
       for (int k = 0; k < 200; ++k) {
@@ -41,7 +27,7 @@ TEST(NoAllocation, AdvanceAndMeasureDoNotAllocate) {
         (void)sensor.measure(axis->position());
       }
     }
-    EXPECT_EQ(g_allocations.load() - before, 0) << name;
+    EXPECT_EQ(netmc::testing::heap_allocations() - before, 0) << name;
   }
 }
 
