@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "client/study_report.hpp"
+#include "control/controller_estimate.hpp"
 
 namespace netmc::cli {
 namespace {
@@ -357,6 +358,8 @@ std::vector<EstimateColumn> estimate_columns(const CsvTable& table) {
     const std::size_t open = h.find('[');
     if (open == std::string::npos || h.back() != ']') continue;
     out.push_back({c, h.substr(0, open), h.substr(open + 1, h.size() - open - 2)});
+    // A trace file is input like any other: no more panels than a controller can write.
+    if (out.size() == control::kMaxControllerEstimates) break;
   }
   return out;
 }

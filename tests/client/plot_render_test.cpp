@@ -2,6 +2,7 @@
 // a failing gnuplot leaves no figure behind and says why.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -250,6 +251,40 @@ TEST(Gnuplot, TextCannotLeaveItsStringAndPathsWithLineBreaksAreRefused) {
   EXPECT_EQ(gnuplot_quote("/tmp/figures"), "'/tmp/figures'");
   EXPECT_THROW(gnuplot_quote("/tmp/it's"), std::invalid_argument);
   EXPECT_THROW(gnuplot_quote("/tmp/a\nset output"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace netmc::cli
+
+#include "client/figures.hpp"
+#include "control/controller_estimate.hpp"
+
+namespace netmc::cli {
+namespace {
+
+// A trace file is input: its estimate columns become at most kMaxControllerEstimates panels,
+// and their names reach gnuplot only as text.
+TEST(PlotRender, EstimateFiguresAreBoundedAndQuoteTheirNames) {
+  std::string header = "time_s,x_ref_m,y_ref_m,x_m,y_m,contour_error_m,tau_x_s";
+  std::string row = "0,0,0,0,0,0,0";
+  for (int i = 0; i < 100; ++i) {
+    header += ",e`touch x`" + std::to_string(i) + "[V]";
+    row += ",1";
+  }
+  SimOutputs outputs;
+  outputs.study.add_runs()->set_label("run");
+  outputs.traces.push_back({"run", CsvTable::parse(header + "\n" + row + "\n" + row + "\n", "trace.csv")});
+  const auto dir = std::filesystem::temp_directory_path() / "netmc-estimate-figure-test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto figures = sim_figures(outputs, dir.string());
+  std::filesystem::remove_all(dir);
+  const auto estimates = std::find_if(figures.begin(), figures.end(), [](const Figure& f) { return f.name == "estimates-1"; });
+  ASSERT_NE(estimates, figures.end());
+  std::size_t plots = 0;
+  for (std::size_t at = estimates->body.find("\nplot "); at != std::string::npos; at = estimates->body.find("\nplot ", at + 1)) ++plots;
+  EXPECT_EQ(plots, control::kMaxControllerEstimates);
+  EXPECT_EQ(estimates->body.find('`'), std::string::npos);  // backquotes would run a shell
 }
 
 }  // namespace
