@@ -208,7 +208,22 @@ int hijack(const Options& options) {
     }
     for (auto& plane : planes) {
       while (auto real = plane->real.try_take()) {
-        if (!nd::sent_by(plane->real.last_sender(), context.identity())) cycle = std::max(cycle, real->cycle());
+        if (nd::sent_by(plane->real.last_sender(), context.identity())) continue;
+        cycle = std::max(cycle, real->cycle());
+        // The job's control is volatile: a rogue whose reader matched the server's writer after
+        // BEGIN_ITERATION left learns the job from its setpoints instead (same server, job and
+        // iteration), so the attack does not depend on discovery's timing.
+        if (!job && real->axis() == options.axis) {
+          nd::JobControl seen;
+          seen.kind(nd::CONTROL_BEGIN_ITERATION);
+          seen.axis(real->axis());
+          seen.server(real->server());
+          seen.job_id(real->job_id());
+          seen.iteration(real->iteration());
+          fmt::print("rogue: job {} of server {} found from its setpoints; attacking\n", seen.job_id(), seen.server());
+          std::fflush(stdout);
+          job = seen;
+        }
       }
     }
     if (job) {
