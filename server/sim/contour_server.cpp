@@ -131,7 +131,8 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   CycleCommand out;
   const control::GroupCycle& step = controller_->step(cycle, reference, server_measurement_);
   out.command = step.command;
-  last_estimates_ = step.estimates;
+  // Only a controller with internal estimates has any to keep (most cycles copy nothing).
+  if (!record_.metrics.estimate_names.empty()) last_estimates_ = step.estimates;
   out.send_time_s = compute_time_ + job_.compute_delay_s;
   tau_cc_.push_back(job_.compute_delay_s);
 
@@ -174,7 +175,7 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
     row.contour_error_m = contour_error;
     row.contour_error_estimate_m = step.estimate.contour_error;
     row.coupling_command = step.coupling_command;
-    row.estimates = step.estimates;
+    if (!record_.metrics.estimate_names.empty()) row.estimates = step.estimates;
   }
   return out;
 }
