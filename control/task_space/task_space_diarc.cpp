@@ -10,27 +10,29 @@
 
 namespace netmc::control {
 
-SecondOrderLowPass::SecondOrderLowPass(double cutoff_hz, double damping, double h) {
-  const double w = 2.0 * std::numbers::pi * require_positive(cutoff_hz, "diarc filter cut-off");
-  require_positive(damping, "diarc filter damping");
-  Eigen::Matrix2d a;
-  a << 0.0, 1.0, -w * w, -2.0 * damping * w;
-  const Eigen::Matrix2d left = (Eigen::Matrix2d::Identity() - 0.5 * h * a).inverse();
-  propagate_ = left * (Eigen::Matrix2d::Identity() + 0.5 * h * a);
-  drive_ = left * Eigen::Vector2d(0.0, w * w) * (0.5 * h);
+namespace {
+
+ProjectedLeastSquares<8, 2, 6>::Settings least_squares_settings(const DiarcGains& gains) {
+  ProjectedLeastSquares<8, 2, 6>::Settings out;
+  out.initial_estimate = gains.initial_estimate;
+  out.lower = gains.lower;
+  out.upper = gains.upper;
+  out.initial_covariance = gains.initial_covariance;
+  out.forgetting = gains.forgetting;
+  out.normalization = gains.normalization;
+  out.covariance_limit = gains.covariance_limit;
+  return out;
 }
 
-void SecondOrderLowPass::step(double input) {
-  state_ = propagate_ * state_ + drive_ * (previous_input_ + input);
-  previous_input_ = input;
-}
+}  // namespace
 
 TaskSpaceDiarc::TaskSpaceDiarc(const DiarcGains& gains, double sample_period_s,
                                std::shared_ptr<const TaskFrame> frame,
                                const InitializationFilterSettings& filter, LocalFrameRate local_rate)
     : gains_(gains),
       h_(require_positive(sample_period_s, "sample period")),
-      sliding_(gains.lambda, sample_period_s, std::move(frame), filter, local_rate) {
+      sliding_(gains.lambda, sample_period_s, std::move(frame), filter, local_rate),
+      estimator_(least_squares_settings(gains)) {
   require_non_negative(gains.forgetting, "diarc forgetting");
   require_non_negative(gains.normalization, "diarc normalization");
   require_positive(gains.covariance_limit, "diarc covariance limit");
@@ -49,8 +51,7 @@ TaskSpaceDiarc::TaskSpaceDiarc(const DiarcGains& gains, double sample_period_s,
 
 void TaskSpaceDiarc::begin_iteration(const Eigen::Vector2d&, std::size_t) {
   sliding_.reset();
-  estimate_ = gains_.initial_estimate;
-  covariance_ = gains_.initial_covariance.asDiagonal();
+  estimator_.reset();
   disturbance_.setZero();
   last_command_.setZero();
   for (auto* filters : {&velocity_filter_, &friction_filter_, &unit_filter_, &command_filter_}) {
@@ -74,22 +75,7 @@ void TaskSpaceDiarc::estimate_parameters(const Eigen::Vector2d& velocity) {
     regressor(i, 6 + i) = -unit_filter_[axis].value();
     filtered_command[i] = command_filter_[axis].value();
   }
-  const Eigen::Vector2d prediction_error = regressor * estimate_ - filtered_command;
-  const double normalizer =
-      1.0 + gains_.normalization * (regressor * covariance_ * regressor.transpose()).trace();
-  const ParameterVector tau = -regressor.transpose() * prediction_error / normalizer;
-  const ParameterVector rate = covariance_ * tau;
-  for (int i = 0; i < 8; ++i) {
-    // Box projection for a non-diagonal Gamma: clamp after the step (digest 2.12 [A]).
-    estimate_[i] = projected_step(estimate_[i], rate[i], gains_.lower[i], gains_.upper[i], h_);
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> physical(covariance_.topLeftCorner<6, 6>(),
-                                                                             Eigen::EigenvaluesOnly);
-  if (physical.eigenvalues().maxCoeff() <= gains_.covariance_limit) {
-    const Eigen::Matrix<double, 8, 2> gain = covariance_ * regressor.transpose();
-    covariance_ += h_ * (gains_.forgetting * covariance_ - gain * gain.transpose() / normalizer);
-    covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
-  }
+  estimator_.update(regressor, filtered_command, h_);
 }
 
 ContouringCycle TaskSpaceDiarc::step(std::size_t cycle, const ReferencePoint& reference,
@@ -100,7 +86,8 @@ ContouringCycle TaskSpaceDiarc::step(std::size_t cycle, const ReferencePoint& re
       darc_regressor(state.equivalent_acceleration, state.velocity, gains_.friction_slope);
 
   ContouringCycle out;
-  out.command = phi * estimate_ - disturbance_ - state.jacobian.transpose() * gains_.feedback.cwiseProduct(state.s);
+  out.command = phi * estimator_.estimate() - disturbance_ -
+                state.jacobian.transpose() * gains_.feedback.cwiseProduct(state.s);
   out.axis_command = out.command;
   out.estimate.contour_error = state.error[0];
   last_command_ = out.command;
@@ -131,7 +118,7 @@ std::vector<EstimateName> TaskSpaceDiarc::estimate_names() const {
 }
 
 void TaskSpaceDiarc::read_estimates(double* out) const {
-  for (int i = 0; i < 8; ++i) out[i] = estimate_[i];
+  for (int i = 0; i < 8; ++i) out[i] = estimator_.estimate()[i];
   out[8] = disturbance_[0];
   out[9] = disturbance_[1];
 }

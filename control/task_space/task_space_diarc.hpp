@@ -19,6 +19,8 @@
 #include <vector>
 
 #include "control/contour_controller.hpp"
+#include "control/estimation/projected_least_squares.hpp"
+#include "control/estimation/second_order_low_pass.hpp"
 #include "control/task_space/task_space_darc.hpp"
 #include "control/task_space/task_space_sliding_variable.hpp"
 
@@ -44,24 +46,6 @@ struct DiarcGains {
   Eigen::Vector2d feedback{100.0, 60.0};  // K
 };
 
-// Second-order low-pass w^2 / (s^2 + 2 zeta w s + w^2), trapezoidal rule; exposes the output
-// and its derivative.
-class SecondOrderLowPass {
- public:
-  SecondOrderLowPass(double cutoff_hz, double damping, double sample_period_s);
-  void reset() { state_.setZero(); previous_input_ = 0.0; }
-  // Advance one period with the input moving linearly from the previous value to `input`.
-  void step(double input);
-  double value() const { return state_[0]; }
-  double derivative() const { return state_[1]; }
-
- private:
-  Eigen::Matrix2d propagate_;  // (I - hA/2)^-1 (I + hA/2)
-  Eigen::Vector2d drive_;      // (I - hA/2)^-1 B h/2
-  Eigen::Vector2d state_ = Eigen::Vector2d::Zero();
-  double previous_input_ = 0.0;
-};
-
 class TaskSpaceDiarc final : public ContourController {
  public:
   TaskSpaceDiarc(const DiarcGains& gains, double sample_period_s, std::shared_ptr<const TaskFrame> frame,
@@ -73,12 +57,12 @@ class TaskSpaceDiarc final : public ContourController {
                        const Eigen::Vector2d& measured) override;
   std::string describe() const override;
 
-  const ParameterVector& parameter_estimate() const { return estimate_; }
+  const ParameterVector& parameter_estimate() const { return estimator_.estimate(); }
   // theta_hat (8) then d_hat_c (2).
   std::vector<EstimateName> estimate_names() const override;
   void read_estimates(double* out) const override;
   const Eigen::Vector2d& disturbance_estimate() const { return disturbance_; }
-  const CovarianceMatrix& covariance() const { return covariance_; }
+  const CovarianceMatrix& covariance() const { return estimator_.covariance(); }
 
  private:
   void estimate_parameters(const Eigen::Vector2d& velocity);
@@ -86,8 +70,7 @@ class TaskSpaceDiarc final : public ContourController {
   DiarcGains gains_;
   double h_;
   TaskSpaceSlidingVariable sliding_;
-  ParameterVector estimate_;
-  CovarianceMatrix covariance_;
+  ProjectedLeastSquares<8, 2, 6> estimator_;  // Gamma limited on the physical 6x6 block
   Eigen::Vector2d disturbance_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d last_command_ = Eigen::Vector2d::Zero();
   // Per axis: H_f of the velocity, of S_f(velocity), of 1 and of the command.
