@@ -7,6 +7,7 @@
 #include <string>
 
 #include "plant/ball_screw_drive.hpp"
+#include "plant/dead_zone_input.hpp"
 #include "plant/flexible_linear_motor_axis.hpp"
 #include "plant/linear_motor_axis.hpp"
 #include "plant/resonant_stage_axis.hpp"
@@ -71,6 +72,17 @@
 //   Hz); Y: m = 30 kg; (0.018, 0.0432, 182 Hz), (0.0021, 0.0531, 302 Hz). Sub-step 1e-5 s (100 kHz,
 //   digest 4.6 [A]); with a constant force the modes are exact anyway.
 //
+// hiwin -- paper 000 (thesis) ch. 5, the Hiwin single-axis linear-motor stage, eq. 5-49 with the
+//   Exp I dead zone 5-51: x'' = E w - B x' - A S_f(x'), w = D(v), identified B = 4.3 1/s,
+//   A = 0.9 m/s^2 (printed "/s"; it multiplies a unit-free S_f), E = 3.6 m/s^2/V, f_N = 0;
+//   D: right 0.9 (v - 1.2), left 1.0 (v + 1) (volts in, volts out). Exp II's symmetric dead zone
+//   5-54 is dead_zone_left_slope = 0.9.
+//   S_f: chapter 5 and appendix A give no form; chapter 3's is 2/pi atan(9000 v). The plant uses
+//   SecondOrderAxis's tanh(v / 1.745e-4 m/s), the same slope at v = 0 (2/pi 9000 = 1/1.745e-4).
+//   A disturbance (V) enters at the motor, after the dead zone: E times it as an acceleration.
+//   Sub-step 5e-5 s: the friction slope A / 1.745e-4 = 5.2e3 1/s gives h lambda = 0.26.
+//   A single-axis stage: a second or third axis, when asked for, is a copy.
+//
 // A third axis, when asked for, copies the second axis's parameters.
 
 namespace netmc::plant {
@@ -124,6 +136,37 @@ ResonantStageParameters stage004_axis_parameters(std::size_t axis) {
     p.modes = {{0.018, 0.0432, 182.0}, {0.0021, 0.0531, 302.0}};
   }
   return p;
+}
+
+// Thesis eq. 5-49 / 5-51 (see above); the dead zone in volts, E applied behind it.
+struct HiwinParameters {
+  double viscous = 4.3;                  // B (1/s)
+  double coulomb = 0.9;                  // A (m/s^2)
+  double gain = 3.6;                     // E (m/s^2 per V)
+  double friction_velocity_scale = 1.745e-4;  // m/s, tanh width of S_f
+  DeadZoneParameters dead_zone{1.2, -1.0, 0.9, 1.0};
+  Disturbance disturbance;               // V, at the motor input
+  double max_substep_s = 5e-5;
+};
+
+Disturbance scaled(Disturbance d, double factor) {
+  d.constant *= factor;
+  d.sine_amplitude *= factor;
+  d.step_amplitude *= factor;
+  d.noise.stddev *= factor;
+  return d;
+}
+
+std::unique_ptr<AxisPlant> make_hiwin_axis(const HiwinParameters& p) {
+  SecondOrderAxisParameters axis;
+  axis.a1 = 0.0;
+  axis.a2 = -p.viscous;
+  axis.b = p.gain;
+  axis.coulomb_acceleration = p.coulomb;
+  axis.coulomb_velocity_scale = p.friction_velocity_scale;
+  axis.disturbance = scaled(p.disturbance, p.gain);  // V -> m/s^2
+  axis.max_substep_s = p.max_substep_s;
+  return std::make_unique<DeadZoneInput>(p.dead_zone, std::make_unique<SecondOrderAxis>(axis));
 }
 
 // One overridable parameter of a plant's parameter struct P.
@@ -250,6 +293,26 @@ std::vector<Setting<ResonantStageParameters>> stage004_settings() {
   return out;
 }
 
+std::vector<Setting<HiwinParameters>> hiwin_settings() {
+  using P = HiwinParameters;
+  return {
+      {"viscous_1_s", "B, viscous friction (1/s); 4.3", [](P& p, double v) { p.viscous = v; }},
+      {"coulomb_m_s2", "A, Coulomb friction (m/s^2); 0.9", [](P& p, double v) { p.coulomb = v; }},
+      {"gain_m_s2_v", "E, motor input gain ((m/s^2)/V); 3.6", [](P& p, double v) { p.gain = v; }},
+      {"friction_velocity_scale_m_s", "tanh width of S_f (m/s); 1.745e-4",
+       [](P& p, double v) { p.friction_velocity_scale = v; }},
+      {"dead_zone_right_v", "b_r, right break point of the input dead zone (V), >= 0; 1.2",
+       [](P& p, double v) { p.dead_zone.right_break_v = v; }},
+      {"dead_zone_left_v", "b_l, left break point of the input dead zone (V), <= 0; -1",
+       [](P& p, double v) { p.dead_zone.left_break_v = v; }},
+      {"dead_zone_right_slope", "m_r, right slope of the dead zone (V/V), > 0; 0.9",
+       [](P& p, double v) { p.dead_zone.right_slope = v; }},
+      {"dead_zone_left_slope", "m_l, left slope of the dead zone (V/V), > 0; 1 (0.9: Exp II, eq. 5-54)",
+       [](P& p, double v) { p.dead_zone.left_slope = v; }},
+      {"max_substep_s", "RK4 sub-step bound (s); 5e-5", [](P& p, double v) { p.max_substep_s = v; }},
+  };
+}
+
 template <class P>
 std::vector<PlantParameter> describe_settings(const std::vector<Setting<P>>& settings) {
   std::vector<PlantParameter> out;
@@ -279,7 +342,7 @@ P with_overrides(P p, const std::vector<Setting<P>>& settings, const AxisOverrid
   return p;
 }
 
-const char* const kNames[] = {"seed001", "ballscrew", "linmotor", "stage004", "linmotor-flex"};
+const char* const kNames[] = {"seed001", "ballscrew", "linmotor", "stage004", "linmotor-flex", "hiwin"};
 const char* const kAxisLabels[] = {"X", "Y", "Z"};
 
 std::string expected_names() {
@@ -319,6 +382,7 @@ std::vector<PlantParameter> plant_parameters(std::string_view name) {
   if (name == "linmotor") return describe_settings(linmotor_settings());
   if (name == "stage004") return describe_settings(stage004_settings());
   if (name == "linmotor-flex") return describe_settings(linmotor_flex_settings());
+  if (name == "hiwin") return describe_settings(hiwin_settings());
   throw std::invalid_argument("plant: unknown name '" + std::string(name) + "' (expected one of: " + expected_names() + ")");
 }
 
@@ -341,6 +405,8 @@ AxisSet make_plant_set(std::string_view name, std::size_t axis_count, const std:
     title = "linmotor-flex: paper 000 linear motors with appendix A's flexible mode, current loop and Stribeck friction";
   } else if (name == "stage004") {
     title = "stage004: paper 004 eq. 1 H-bridge stage with resonances (Tables 1/2)";
+  } else if (name == "hiwin") {
+    title = "hiwin: paper 000 ch. 5 single-axis linear motor with an input dead zone (eq. 5-49, 5-51)";
   } else {
     throw std::invalid_argument("plant: unknown name '" + std::string(name) +
                                 "' (expected one of: " + expected_names() + ")");
@@ -368,6 +434,8 @@ AxisSet make_plant_set(std::string_view name, std::size_t axis_count, const std:
     } else if (name == "linmotor-flex") {
       plant = std::make_unique<FlexibleLinearMotorAxis>(with_overrides(
           flexible_linear_motor_axis_parameters(axis), linmotor_flex_settings(), changes, name));
+    } else if (name == "hiwin") {
+      plant = make_hiwin_axis(with_overrides(HiwinParameters{}, hiwin_settings(), changes, name));
     } else {
       plant = std::make_unique<ResonantStageAxis>(
           with_overrides(stage004_axis_parameters(axis), stage004_settings(), changes, name));

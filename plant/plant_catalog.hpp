@@ -19,7 +19,7 @@ struct AxisSet {
   std::string description;
 };
 
-// "seed001", "ballscrew", "linmotor", "stage004", "linmotor-flex".
+// "seed001", "ballscrew", "linmotor", "stage004", "linmotor-flex", "hiwin".
 std::vector<std::string> plant_names();
 
 // A parameter of a named plant that a job may change per axis (a payload, a friction level).
