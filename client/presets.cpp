@@ -55,7 +55,7 @@ netmc::v1::JobSpec seed001_job(const std::string& controller) {
 std::vector<std::string> preset_names() {
   return {"seed001", "seed001-ellipse", "seed001-line", "seed001-long-delay", "seed001-bursty",
           "thesis-ellipse", "thesis-circle", "thesis-darc", "thesis-darc-sets", "thesis-cogging", "thesis-ellipse-delay",
-          "thesis-spatial", "seed004"};
+          "thesis-spatial", "thesis-dead-zone", "seed004"};
 }
 
 namespace {
@@ -312,6 +312,64 @@ StudyPlan thesis_cogging() {
   return plan;
 }
 
+// Thesis Table 5-1 (digest 2.9): dead-zone compensation on the single Hiwin axis (plant hiwin,
+// eq. 5-49 with the dead zone 5-51), Ts = 0.2 ms, 0.5 um encoder, reference (5-50) from rest at
+// 0. Exp I: C1 (dead zone ignored), C2 (inverse of the nominal dead zone), C3 (DIARC with
+// dead-zone estimation), C4 (inverse of the true dead zone). Exp II: the symmetric dead zone (5-54)
+// (left slope 0.9 as the right one), C5 (the adaptive variable-structure law 5-55) and C3.
+// The thesis gives neither run length nor window, nor a drive range. [A] 20 s (two periods of
+// the reference), norms of x - x_d over the second period, where C3's estimates have settled
+// (the thesis's C3 = C4 within 4 % is only possible there); the DS1103's +-10 V output range.
+constexpr double kDeadZoneRunS = 20.0;
+constexpr double kDeadZoneWindowS = 10.0;
+constexpr double kDeadZoneOutputRangeV = 10.0;
+
+StudyPlan thesis_dead_zone() {
+  netmc::v1::Trajectory t;
+  auto& m = *t.mutable_multi_sine();
+  m.set_offset_m(0.21);
+  for (const auto& [amplitude, frequency] : {std::pair{0.08, 0.5}, std::pair{0.07, 0.4}, std::pair{0.06, 0.6}}) {
+    auto& term = *m.add_terms();
+    term.set_amplitude_m(amplitude);
+    term.set_frequency_hz(frequency);
+    term.set_phase_rad(-std::numbers::pi / 2.0);
+  }
+  m.set_duration_s(kDeadZoneRunS);
+  m.set_period_s(10.0);
+  struct Row {
+    const char* label;
+    const char* controller;
+    bool symmetric;  // Exp II
+    double rms_um, max_um;
+  };
+  const Row rows[] = {{"C1 I", "axis-diarc", false, 26.33, 101.95},
+                      {"C2 I", "axis-diarc+nominal-inverse", false, 13.00, 56.66},
+                      {"C3 I", "axis-diarc-dead-zone", false, 3.63, 24.22},
+                      {"C4 I", "axis-diarc+exact-inverse", false, 3.50, 24.14},
+                      {"C5 II", "axis-avsc", true, 258.0, 650.0},
+                      {"C3 II", "axis-diarc-dead-zone", true, 3.69, 23.26}};
+  StudyPlan plan = thesis_plan("thesis Table 5-1: dead-zone compensation on one linear-motor axis (hiwin), reference "
+                               "5-50 for 20 s, Ts = 0.2 ms, +-10 V; error x - x_d over 10-20 s. Exp I: dead zone 5-51 "
+                               "(C1 ignored, C2 nominal inverse, C3 adaptive, C4 exact inverse); Exp II: symmetric "
+                               "5-54 (C5 adaptive variable structure, C3)",
+                               {}, "thesis Table 5-1 (||x~||_2, ||x~||_inf)");
+  for (const Row& row : rows) {
+    netmc::v1::JobSpec job = thesis_job(t, row.controller, row.label, kDeadZoneWindowS);
+    job.set_plant("hiwin");
+    job.set_command_limit(kDeadZoneOutputRangeV);
+    if (row.symmetric) {
+      auto& axis = *job.add_plant_axes();
+      axis.set_axis("x");
+      auto& parameter = *axis.add_parameters();
+      parameter.set_key("dead_zone_left_slope");
+      parameter.set_value(0.9);
+    }
+    plan.jobs.push_back(job);
+    plan.paper.push_back({row.label, row.rms_um * 1e-6, row.max_um * 1e-6});
+  }
+  return plan;
+}
+
 // Paper 001's ADRC on the linear-motor stage (it has no gains for it): b0 = 1/M per axis with
 // the thesis's nominal masses, and the closed loop (s + w_c)^2 of GTCF-ADRC's contour loop,
 // w_c = 300 rad/s: kp = w_c^2 / b0, kd = 2 w_c / b0; observer w0 = 1500 rad/s (5 w_c, w0 h = 0.3
@@ -551,6 +609,7 @@ StudyPlan make_preset(std::string_view name) {
   if (name == "thesis-cogging") return thesis_cogging();
   if (name == "thesis-ellipse-delay") return thesis_ellipse_delay();
   if (name == "thesis-spatial") return thesis_spatial();
+  if (name == "thesis-dead-zone") return thesis_dead_zone();
   if (name == "seed004") return seed004();
   std::string expected;
   for (const auto& n : preset_names()) expected += (expected.empty() ? "" : ", ") + n;

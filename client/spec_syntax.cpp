@@ -115,6 +115,34 @@ google::protobuf::RepeatedPtrField<netmc::v1::Point2> parse_points(const std::ma
   return points;
 }
 
+// terms=A/F/P;A/F/P;..: amplitude (a length), frequency (Hz), phase (rad).
+google::protobuf::RepeatedPtrField<netmc::v1::SineTerm> parse_sine_terms(
+    const std::map<std::string, std::string>& keys, std::string_view field) {
+  const auto it = keys.find("terms");
+  if (it == keys.end()) {
+    fail(field, "missing key 'terms' (expected terms=A/F/P;A/F/P;... such as 80mm/0.5/-1.5708)");
+  }
+  google::protobuf::RepeatedPtrField<netmc::v1::SineTerm> terms;
+  std::string_view text = it->second;
+  for (int index = 1; index <= 17; ++index) {
+    const std::size_t semicolon = text.find(';');
+    const std::string_view item = trim(text.substr(0, semicolon));
+    const std::string name = std::string(field) + " terms: term " + std::to_string(index);
+    const std::size_t first = item.find('/');
+    const std::size_t second = first == std::string_view::npos ? first : item.find('/', first + 1);
+    if (second == std::string_view::npos || item.find('/', second + 1) != std::string_view::npos) {
+      fail(name, "expected AMPLITUDE/FREQUENCY_HZ/PHASE_RAD such as 80mm/0.5/-1.5708, got '" + std::string(item) + "'");
+    }
+    auto& term = *terms.Add();
+    term.set_amplitude_m(parse_quantity(item.substr(0, first), Quantity::length, name + " amplitude"));
+    term.set_frequency_hz(parse_quantity(item.substr(first + 1, second - first - 1), Quantity::plain, name + " frequency"));
+    term.set_phase_rad(parse_quantity(item.substr(second + 1), Quantity::plain, name + " phase"));
+    if (semicolon == std::string_view::npos) return terms;
+    text.remove_prefix(semicolon + 1);
+  }
+  fail(field, "expected at most 16 terms");
+}
+
 std::uint32_t key_whole_number(const std::map<std::string, std::string>& keys, const std::string& key,
                                std::string_view field) {
   const double value = key_quantity(keys, key, Quantity::plain, field);
@@ -271,12 +299,20 @@ netmc::v1::Trajectory parse_trajectory(std::string_view text) {
     auto& s = *out.mutable_spline();
     *s.mutable_points() = parse_points(keys, field);
     parse_feed(keys, field, *s.mutable_feed());
+  } else if (spec.kind == "multi-sine") {
+    const auto keys = parse_keys(spec.argument, field, {"terms", "offset", "duration", "period"}, {"terms"});
+    auto& m = *out.mutable_multi_sine();
+    *m.mutable_terms() = parse_sine_terms(keys, field);
+    m.set_offset_m(key_quantity(keys, "offset", Quantity::length, field, 0.0));
+    m.set_duration_s(key_quantity(keys, "duration", Quantity::time, field));
+    m.set_period_s(key_quantity(keys, "period", Quantity::time, field, 0.0));
   } else {
     fail(field, "unknown shape '" + spec.kind +
                     "' (expected circle:r=..,cx=..,cy=..,period=.., ellipse:a=..,b=..,cx=..,cy=..,"
                     "period=.., line:x0=..,y0=..,x1=..,y1=..,duration=.., "
-                    "lissajous:ax=..,ay=..,p=..,q=..,period=.., polyline:points=X,Y;X,Y;..,vmax=..,amax=.. "
-                    "or spline:points=X,Y;X,Y;..,feed=..,amax=..)");
+                    "lissajous:ax=..,ay=..,p=..,q=..,period=.., polyline:points=X,Y;X,Y;..,vmax=..,amax=.., "
+                    "spline:points=X,Y;X,Y;..,feed=..,amax=.. or, for one axis, "
+                    "multi-sine:terms=A/F/P;..,offset=..,duration=..)");
   }
   return out;
 }

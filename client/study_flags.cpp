@@ -176,11 +176,15 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--trajectory", flags.trajectory, "circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=.. (or feed=..,amax=.. instead of period) | line:x0=..,y0=..,x1=..,y1=..,duration=.. | "
                   "lissajous:ax=20mm,ay=15mm,p=3,q=2,period=20s[,phase=..,cx=..,cy=..] (or feed=..,amax=.. instead of period) | "
                   "polyline:points=0,0;10mm,0;10mm,10mm,vmax=10mm/s,amax=100mm/s2[,corner=..] | "
-                  "spline:points=X,Y;X,Y;...,feed=10mm/s,amax=50mm/s2[,at=..] (points closed when the last equals the first)");
+                  "spline:points=X,Y;X,Y;...,feed=10mm/s,amax=50mm/s2[,at=..] (points closed when the last equals the first) | "
+                  "one axis: multi-sine:terms=80mm/0.5/-1.5708;70mm/0.4/-1.5708,offset=150mm,duration=20s[,period=10s] "
+                  "(amplitude/frequency in Hz/phase in rad; the error is x - x_d)");
   app->add_option("--controller", flags.controllers,
                   "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc ...; task space: gtcf-sarc, "
                   "ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, gtcf-darc-cogging, ltcf-darc-cogging, "
-                  "gtcf-adrc; paper 002: mfa-dtsmc, mfac; paper 004: ffpid, ffpid+lpccc, ffpid+qftccc");
+                  "gtcf-adrc; paper 002: mfa-dtsmc, mfac; paper 004: ffpid, ffpid+lpccc, ffpid+qftccc; one axis "
+                  "(--trajectory multi-sine): axis-diarc, axis-diarc+nominal-inverse, axis-diarc+exact-inverse, "
+                  "axis-diarc-dead-zone, axis-avsc");
   app->add_option("--delay", flags.delay, "Loop delay on the controller->actuator link: none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=.. | pareto:scale=..,shape=.. | markov:good=A..B,bad=C..D,p_gb=..,p_bg=.. | trace:FILE.csv");
   app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);
   add_job_override_flags(app, flags);

@@ -86,9 +86,13 @@ void print_steady_table(std::ostream& out, const StudyPlan& plan,
                  outcome.result.label(), width, outcome.result.evaluation_start_s());
       continue;
     }
-    fmt::print(out, "{:<{}} {:>17.2f} {:>17.2f} {:>10.3f}  {:>11.2f} {:>11.2f}", outcome.result.label(), width,
+    // A one-axis run has no u_y.
+    const auto input = [&](int axis) {
+      return axis < m.command_rms_steady_size() ? fmt::format("{:.2f}", m.command_rms_steady(axis)) : std::string("-");
+    };
+    fmt::print(out, "{:<{}} {:>17.2f} {:>17.2f} {:>10.3f}  {:>11} {:>11}", outcome.result.label(), width,
                m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6,
-               first.e_rms_steady_m() > 0.0 ? m.e_rms_steady_m() / first.e_rms_steady_m() : std::numeric_limits<double>::quiet_NaN(), m.command_rms_steady(0), m.command_rms_steady(1));
+               first.e_rms_steady_m() > 0.0 ? m.e_rms_steady_m() / first.e_rms_steady_m() : std::numeric_limits<double>::quiet_NaN(), input(0), input(1));
     if (const PaperRow* row = paper_row(plan, outcome.result)) {
       fmt::print(out, "  {:>16} {:>16}", paper_micrometres(row->e_max_m), paper_micrometres(row->e_sum_m));
     }

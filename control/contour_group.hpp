@@ -3,7 +3,8 @@
 // reference and exact contour it follows (GroupContour) and the controller that closes its loops
 // (GroupController). Two-axis groups wrap the planar trajectories and controllers
 // (planar_contour_group.hpp), three-axis groups the circle in space and GTCF-SARC
-// (spatial_contour_group.hpp). Vectors have a fixed capacity so that a cycle never allocates.
+// (spatial_contour_group.hpp), one-axis groups a tracking reference and a tracking controller
+// (single_axis_group.hpp). Vectors have a fixed capacity so that a cycle never allocates.
 
 #include <Eigen/Dense>
 #include <array>
@@ -40,9 +41,10 @@ class GroupContour {
   virtual std::size_t axes() const = 0;
   // The desired point at `time_s` (written into `out`, sized to axes()).
   virtual void sample(double time_s, GroupReference& out) const = 0;
-  // Exact distance from `point` to the contour, the ground truth of the metrics: signed where
-  // the contour has sides (planar), >= 0 otherwise.
-  virtual double contour_error(const AxisVector& point) const = 0;
+  // The ground truth of the metrics for `point` in the cycle whose desired point is `reference`:
+  // the exact distance to the contour for two or more axes (signed where the contour has sides,
+  // planar; >= 0 otherwise; `reference` unused), the tracking error x - x_d for one axis.
+  virtual double contour_error(const AxisVector& point, const GroupReference& reference) const = 0;
   virtual double duration_s() const = 0;
   // One pass of a repeating reference (a revolution); the whole run otherwise.
   virtual double period_s() const = 0;

@@ -129,4 +129,40 @@ std::unique_ptr<ContourController> make_contour_controller(std::string_view name
       make_contouring_controller(name, settings, sample_period_s, trajectory.clone()));
 }
 
+std::vector<std::string> tracking_controller_names() {
+  return {"axis-diarc", "axis-diarc+nominal-inverse", "axis-diarc+exact-inverse", "axis-diarc-dead-zone", "axis-avsc"};
+}
+
+std::unique_ptr<TrackingController> make_tracking_controller(std::string_view name, const ControllerSettings& settings,
+                                                             double sample_period_s) {
+  try {
+    if (name == "axis-diarc-dead-zone") {
+      DeadZoneDiarcGains gains;
+      gains.loop = settings.axis_diarc;
+      return std::make_unique<DeadZoneDiarc>(gains, sample_period_s);
+    }
+    if (name == "axis-avsc") return std::make_unique<AdaptiveVariableStructureController>(settings.avsc, sample_period_s);
+    const std::pair<std::string_view, DeadZoneHandling> fixed[] = {
+        {"axis-diarc", DeadZoneHandling::ignored},
+        {"axis-diarc+nominal-inverse", DeadZoneHandling::nominal_inverse},
+        {"axis-diarc+exact-inverse", DeadZoneHandling::exact_inverse}};
+    for (const auto& [known, handling] : fixed) {
+      if (name != known) continue;
+      auto gains = FixedInverseDiarcGains::thesis(handling);
+      gains.loop = settings.axis_diarc;
+      if (handling == DeadZoneHandling::exact_inverse) gains.inverse = settings.exact_dead_zone;
+      return std::make_unique<FixedInverseDiarc>(gains, sample_period_s);
+    }
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    if (message.rfind("controller", 0) == 0) throw;
+    throw std::invalid_argument("controller: " + message);
+  }
+  std::string expected;
+  for (const auto& known : tracking_controller_names()) expected += (expected.empty() ? "" : ", ") + known;
+  std::string message = "controller: a single-axis job runs one of ";
+  message.append(expected).append(", got '").append(name).append("'");
+  throw std::invalid_argument(message);
+}
+
 }  // namespace netmc::control

@@ -7,9 +7,13 @@
 #include <vector>
 
 #include "control/axis/adrc_controller.hpp"
+#include "control/axis/tracking_controller.hpp"
 #include "control/axis/feedforward_pid_axis.hpp"
 #include "control/cross_coupling/contouring_controller.hpp"
 #include "control/data_driven/compact_form_mfac.hpp"
+#include "control/dead_zone/adaptive_variable_structure_controller.hpp"
+#include "control/dead_zone/dead_zone_diarc.hpp"
+#include "control/dead_zone/fixed_inverse_diarc.hpp"
 #include "control/data_driven/mfa_dtsmc_axis.hpp"
 #include "control/frequency/qft_bounds.hpp"
 #include "control/cross_coupling/iterative_learning_cross_coupling.hpp"
@@ -53,6 +57,11 @@ struct ControllerSettings {
   FeedforwardPidGains ffpid_x = paper004_x_axis_gains();
   FeedforwardPidGains ffpid_y = paper004_y_axis_gains();
   FilteredPidCrossCouplingGains lpccc;
+  // Thesis ch. 5 (one axis): the DIARC loop (5-22) of C1-C4, the dead zone C4 inverts (volts,
+  // the thesis's Exp I by default) and the adaptive variable-structure law of C5.
+  DiarcLoopGains axis_diarc;
+  DeadZoneEstimate exact_dead_zone = thesis_dead_zone_inverse(DeadZoneHandling::exact_inverse);
+  AdaptiveVariableStructureGains avsc;
   std::string estimator = "curvature";
 };
 
@@ -74,5 +83,14 @@ std::unique_ptr<ContourController> make_contour_controller(std::string_view name
                                                            const ControllerSettings& settings,
                                                            double sample_period_s,
                                                            const ReferenceTrajectory& trajectory);
+
+// Single-axis tracking controllers (thesis ch. 5, one-axis groups): axis-diarc (C1, the dead zone
+// ignored), axis-diarc+nominal-inverse (C2), axis-diarc+exact-inverse (C4), axis-diarc-dead-zone
+// (C3, the dead zone estimated) and axis-avsc (C5, the adaptive variable-structure law).
+std::vector<std::string> tracking_controller_names();
+// Throws std::invalid_argument("controller: ...") for an unknown name or invalid gain.
+std::unique_ptr<TrackingController> make_tracking_controller(std::string_view name,
+                                                             const ControllerSettings& settings,
+                                                             double sample_period_s);
 
 }  // namespace netmc::control

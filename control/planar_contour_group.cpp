@@ -14,7 +14,7 @@ void PlanarContour::sample(double time_s, GroupReference& out) const {
   out.time_s = time_s;
 }
 
-double PlanarContour::contour_error(const AxisVector& point) const {
+double PlanarContour::contour_error(const AxisVector& point, const GroupReference&) const {
   return trajectory_->contour_error(Eigen::Vector2d(point[0], point[1]));
 }
 

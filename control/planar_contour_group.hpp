@@ -18,7 +18,7 @@ class PlanarContour final : public GroupContour {
 
   std::size_t axes() const override { return 2; }
   void sample(double time_s, GroupReference& out) const override;
-  double contour_error(const AxisVector& point) const override;
+  double contour_error(const AxisVector& point, const GroupReference& reference) const override;
   double duration_s() const override { return trajectory_->duration_s(); }
   double period_s() const override { return trajectory_->period_s(); }
   std::string describe() const override { return trajectory_->describe(); }

@@ -20,7 +20,7 @@ void SpatialContour::sample(double time_s, GroupReference& out) const {
   out.time_s = time_s;
 }
 
-double SpatialContour::contour_error(const AxisVector& point) const {
+double SpatialContour::contour_error(const AxisVector& point, const GroupReference&) const {
   return circle_->distance(Eigen::Vector3d(point[0], point[1], point[2]));
 }
 

@@ -20,7 +20,7 @@ class SpatialContour final : public GroupContour {
 
   std::size_t axes() const override { return 3; }
   void sample(double time_s, GroupReference& out) const override;
-  double contour_error(const AxisVector& point) const override;  // >= 0
+  double contour_error(const AxisVector& point, const GroupReference& reference) const override;  // >= 0
   double duration_s() const override { return duration_s_; }
   double period_s() const override { return circle_->period_s(); }
   std::string describe() const override { return circle_->describe(); }

@@ -18,6 +18,7 @@
 #include "control/trajectory/line_trajectory.hpp"
 #include "control/trajectory/lissajous_trajectory.hpp"
 #include "control/trajectory/polyline_trajectory.hpp"
+#include "control/trajectory/multi_sine_reference.hpp"
 #include "control/trajectory/spatial_circle.hpp"
 #include "plant/plant_catalog.hpp"
 
@@ -139,6 +140,8 @@ std::shared_ptr<const control::ReferenceTrajectory> build_shape(const netmc::v1:
     }
     case netmc::v1::Trajectory::kSpatialCircle:
       throw std::invalid_argument("trajectory.spatial_circle: a three-axis contour, not a planar trajectory");
+    case netmc::v1::Trajectory::kMultiSine:
+      throw std::invalid_argument("trajectory.multi_sine: a single-axis reference, not a planar trajectory");
     case netmc::v1::Trajectory::SHAPE_NOT_SET:
       break;
   }
@@ -177,6 +180,23 @@ std::shared_ptr<const control::SpatialCircle> build_spatial_circle(const netmc::
   } catch (const std::invalid_argument& error) {
     throw std::invalid_argument(std::string("trajectory.spatial_circle: ") + error.what());
   }
+}
+
+std::shared_ptr<const control::MultiSineReference> build_axis_reference(const netmc::v1::JobSpec& spec) {
+  const auto& m = spec.trajectory().multi_sine();
+  if (spec.trajectory().has_halt()) {
+    throw std::invalid_argument("trajectory.multi_sine: a halt is planar only; expected none");
+  }
+  if (m.terms_size() > static_cast<int>(control::MultiSineReference::kMaxTerms)) {
+    throw std::invalid_argument("trajectory.multi_sine.terms: expected 1 to 16 sinusoids, got " +
+                                std::to_string(m.terms_size()));
+  }
+  control::MultiSineParameters p;
+  p.offset_m = m.offset_m();
+  for (const auto& term : m.terms()) p.terms.push_back({term.amplitude_m(), term.frequency_hz(), term.phase_rad()});
+  p.duration_s = m.duration_s();
+  p.period_s = m.period_s() != 0.0 ? m.period_s() : m.duration_s();
+  return std::make_shared<control::MultiSineReference>(p);  // its messages name the field
 }
 
 std::unique_ptr<netsim::DelayModel> build_delay(const DelayProfile& d) {
@@ -383,6 +403,34 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   s.ffpid_x = build_feedforward_pid(c.ffpid_x(), s.ffpid_x, "controller.ffpid_x");
   s.ffpid_y = build_feedforward_pid(c.ffpid_y(), s.ffpid_y, "controller.ffpid_y");
   s.lpccc = build_low_pass_pid(c.lpccc(), s.lpccc);
+  const auto& a = c.axis_diarc();
+  set_positive(a.has_lambda(), a.lambda(), s.axis_diarc.lambda, "controller.axis_diarc.lambda");
+  set_positive(a.has_feedback(), a.feedback(), s.axis_diarc.feedback, "controller.axis_diarc.feedback");
+  set_positive(a.has_disturbance_adaptation(), a.disturbance_adaptation(), s.axis_diarc.disturbance_adaptation,
+               "controller.axis_diarc.disturbance_adaptation");
+  set_positive(a.has_disturbance_bound(), a.disturbance_bound(), s.axis_diarc.disturbance_bound,
+               "controller.axis_diarc.disturbance_bound");
+  if (a.has_exact_dead_zone()) {
+    const auto& d = a.exact_dead_zone();
+    const std::string field = "controller.axis_diarc.exact_dead_zone.";
+    const auto within = [&](double value, double low, double high, const char* name, const char* form) {
+      if (!(value >= low && value <= high)) {
+        throw std::invalid_argument(field + name + ": expected " + form + ", got " + fmt::format("{:g}", value));
+      }
+    };
+    within(d.right_break_v(), 0.0, 1e3, "right_break_v", "a voltage in [0, 1000]");
+    within(d.left_break_v(), -1e3, 0.0, "left_break_v", "a voltage in [-1000, 0]");
+    within(d.right_slope(), 1e-6, 1e6, "right_slope", "a slope in [1e-6, 1e6]");
+    within(d.left_slope(), 1e-6, 1e6, "left_slope", "a slope in [1e-6, 1e6]");
+    s.exact_dead_zone = {d.right_slope(), d.right_slope() * d.right_break_v(), d.left_slope(),
+                         d.left_slope() * d.left_break_v()};
+  }
+  const auto& v = c.avsc();
+  set_positive(v.has_c1(), v.c1(), s.avsc.c1, "controller.avsc.c1");
+  set_positive(v.has_c2(), v.c2(), s.avsc.c2, "controller.avsc.c2");
+  set_positive(v.has_mu(), v.mu(), s.avsc.mu, "controller.avsc.mu");
+  set_positive(v.has_gamma(), v.gamma(), s.avsc.parameter_adaptation, "controller.avsc.gamma");
+  set_positive(v.has_beta(), v.beta(), s.avsc.beta, "controller.avsc.beta");
   const auto& i = c.ilccc();
   if (i.has_kcp()) s.ilccc.kcp = i.kcp();
   if (i.has_kcd()) s.ilccc.kcd = i.kcd();
@@ -511,13 +559,14 @@ void check_name(const std::string& name, const std::string& field) {
 }
 
 std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec) {
-  const std::size_t count = is_spatial_job(spec) ? 3 : 2;
+  const std::size_t count = group_axis_count(spec);
   if (spec.axes_size() == 0) {
-    return count == 3 ? std::vector<std::string>{"x", "y", "z"} : std::vector<std::string>{"x", "y"};
+    const std::vector<std::string> defaults{"x", "y", "z"};
+    return {defaults.begin(), defaults.begin() + static_cast<std::ptrdiff_t>(count)};
   }
   if (static_cast<std::size_t>(spec.axes_size()) != count) {
-    throw std::invalid_argument("axes: a " + std::to_string(count) + "-axis contour needs " + std::to_string(count) +
-                                " axis names, got " + std::to_string(spec.axes_size()));
+    throw std::invalid_argument("axes: a " + std::to_string(count) + "-axis job needs " + std::to_string(count) +
+                                (count == 1 ? " axis name, got " : " axis names, got ") + std::to_string(spec.axes_size()));
   }
   std::vector<std::string> names(spec.axes().begin(), spec.axes().end());
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -603,6 +652,9 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
     job.spatial_circle = in_field("trajectory", [&] { return build_spatial_circle(spec); });
     const auto& c = spec.trajectory().spatial_circle();
     job.duration_s = spec.duration_s() > 0.0 ? spec.duration_s() : (c.revolutions() > 0.0 ? c.revolutions() : 4.0) * c.period_s();
+  } else if (is_single_axis_job(spec)) {
+    job.axis_reference = in_field("trajectory", [&] { return build_axis_reference(spec); });
+    job.duration_s = spec.duration_s();
   } else {
     job.trajectory = in_field("trajectory", [&] { return build_trajectory(spec.trajectory()); });
     job.duration_s = spec.duration_s();
@@ -636,6 +688,9 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
     if (job.spatial_circle) {
       throw std::invalid_argument("initial_position: a three-axis contour starts on the contour; expected none");
     }
+    if (job.axis_reference) {
+      throw std::invalid_argument("initial_position: a single-axis job starts at its reference's start; expected none");
+    }
     job.initial_position = Eigen::Vector2d(spec.initial_position().x_m(), spec.initial_position().y_m());
   }
   job.validate();
@@ -646,12 +701,23 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
 
 bool is_spatial_job(const netmc::v1::JobSpec& spec) { return spec.trajectory().has_spatial_circle(); }
 
+bool is_single_axis_job(const netmc::v1::JobSpec& spec) { return spec.trajectory().has_multi_sine(); }
+
+std::size_t group_axis_count(const netmc::v1::JobSpec& spec) {
+  return is_spatial_job(spec) ? 3 : is_single_axis_job(spec) ? 1 : 2;
+}
+
 std::string describe_trajectory(const netmc::v1::Trajectory& trajectory) {
   if (trajectory.has_spatial_circle()) {
     const auto& c = trajectory.spatial_circle();
     return fmt::format("spatial circle(r={:g} mm, centre=({:g}, {:g}, {:g}) mm, normal=({:g}, {:g}, {:g}), period={:g} s)",
                        c.radius_m() * 1e3, c.center_x_m() * 1e3, c.center_y_m() * 1e3, c.center_z_m() * 1e3,
                        c.normal_x(), c.normal_y(), c.normal_z(), c.period_s());
+  }
+  if (trajectory.has_multi_sine()) {
+    netmc::v1::JobSpec spec;
+    *spec.mutable_trajectory() = trajectory;
+    return build_axis_reference(spec)->describe();
   }
   return build_trajectory(trajectory)->describe();
 }
@@ -750,6 +816,10 @@ netmc::v1::RunResult describe_run(const netmc::v1::JobSpec& spec,
   if (is_spatial_job(spec)) {
     result.set_trajectory(describe_trajectory(spec.trajectory()));
     reference_period_s = spec.trajectory().spatial_circle().period_s();
+  } else if (is_single_axis_job(spec)) {
+    const auto reference = build_axis_reference(spec);
+    result.set_trajectory(reference->describe());
+    reference_period_s = reference->period_s();
   } else {
     const auto trajectory = build_trajectory(spec.trajectory());
     result.set_trajectory(trajectory->describe());

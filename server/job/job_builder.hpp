@@ -13,8 +13,8 @@
 
 namespace netmc::job {
 
-// The names of the axes a job drives, in the group's order (spec.axes; default x, y, and z for
-// a three-axis contour), checked.
+// The names of the axes a job drives, in the group's order (spec.axes; default x for one axis,
+// x, y for two, x, y, z for three), checked.
 std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec);
 // An axis or node name: 1-64 characters of A-Z a-z 0-9 _ . - (std::invalid_argument naming `field`).
 void check_name(const std::string& name, const std::string& field);
@@ -24,7 +24,7 @@ void apply_defaults(netmc::v1::JobSpec& spec);
 inline constexpr std::size_t kMaxJobNameBytes = 256;
 inline constexpr std::uint32_t kMaxIterations = 10000;
 
-// Builds the runnable job, two axes or three (loads delay trace files a local spec names,
+// Builds the runnable job, one, two or three axes (loads delay trace files a local spec names,
 // checks every field against its documented range).
 sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec);
 // A spec from the network names no file: throws std::invalid_argument naming the field of a
@@ -35,6 +35,10 @@ void reject_file_references(const netmc::v1::JobSpec& spec);
 void inline_delay_traces(netmc::v1::JobSpec& spec);
 // A three-axis contour (trajectory.spatial_circle, thesis ch. 6).
 bool is_spatial_job(const netmc::v1::JobSpec& spec);
+// A single-axis tracking job (trajectory.multi_sine, thesis ch. 5).
+bool is_single_axis_job(const netmc::v1::JobSpec& spec);
+// The axes the job's group drives: 1, 2 or 3.
+std::size_t group_axis_count(const netmc::v1::JobSpec& spec);
 
 std::string describe_trajectory(const netmc::v1::Trajectory& trajectory);
 std::string describe_link(const netmc::v1::LinkProfile& link);

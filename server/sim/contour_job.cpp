@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "control/planar_contour_group.hpp"
+#include "control/single_axis_group.hpp"
 #include "control/spatial_contour_group.hpp"
 
 namespace netmc::sim {
@@ -22,7 +23,8 @@ std::string LinkProfile::describe() const {
 }
 
 void ContourJob::validate() const {
-  require((trajectory != nullptr) != (spatial_circle != nullptr), "trajectory: missing");
+  const int references = (trajectory != nullptr) + (spatial_circle != nullptr) + (axis_reference != nullptr);
+  require(references == 1, references == 0 ? "trajectory: missing" : "trajectory: expected one reference, got several");
   require(!spatial_circle || (std::isfinite(duration_s) && duration_s > 0.0),
           "duration: a circle in space needs a positive run length");
   require(axes.size() == axis_count(), "plant: expected " + std::to_string(axis_count()) + " axes, got " +
@@ -45,7 +47,7 @@ void ContourJob::validate() const {
   require(!initial_position || (static_cast<std::size_t>(initial_position->size()) == axis_count() &&
                                 initial_position->allFinite()),
           "initial_position: expected finite coordinates, one per axis");
-  const double run_s = duration_s > 0.0 ? duration_s : trajectory->duration_s();
+  const double run_s = run_length_s();
   require(run_s / sample_period_s <= 1e8,
           "sample_period: too many cycles for the run length (more than 1e8)");
   // The work ceiling of one job: 1e9 simulated cycles (about 15 minutes of one core).
@@ -56,16 +58,19 @@ void ContourJob::validate() const {
 control::AxisVector ContourJob::start_position() const {
   if (initial_position) return *initial_position;
   if (spatial_circle) return spatial_circle->sample(0.0).position;
+  if (axis_reference) return control::AxisVector::Constant(1, axis_reference->sample(0.0).position);
   return trajectory->sample(0.0).position;
 }
 
 double ContourJob::evaluation_start() const {
-  return resolve_evaluation_start(evaluation_start_s,
-                                  spatial_circle ? spatial_circle->period_s() : trajectory->period_s());
+  return resolve_evaluation_start(evaluation_start_s, spatial_circle   ? spatial_circle->period_s()
+                                                     : axis_reference ? axis_reference->period_s()
+                                                                      : trajectory->period_s());
 }
 
 std::shared_ptr<const control::GroupContour> ContourJob::contour() const {
   if (spatial_circle) return std::make_shared<control::SpatialContour>(spatial_circle, duration_s);
+  if (axis_reference) return std::make_shared<control::SingleAxisTrack>(axis_reference);
   return std::make_shared<control::PlanarContour>(trajectory);
 }
 
@@ -73,12 +78,17 @@ std::unique_ptr<control::GroupController> ContourJob::make_controller() const {
   if (spatial_circle) {
     return control::make_spatial_group_controller(controller_name, controller, sample_period_s, spatial_circle);
   }
+  if (axis_reference) return control::make_tracking_group_controller(controller_name, controller, sample_period_s);
   return control::make_planar_group_controller(controller_name, controller, sample_period_s, *trajectory);
 }
 
+double ContourJob::run_length_s() const {
+  if (duration_s > 0.0) return duration_s;
+  return axis_reference ? axis_reference->duration_s() : trajectory->duration_s();
+}
+
 std::size_t ContourJob::cycles() const {
-  const double run_s = duration_s > 0.0 ? duration_s : trajectory->duration_s();
-  return static_cast<std::size_t>(std::llround(run_s / sample_period_s)) + 1;
+  return static_cast<std::size_t>(std::llround(run_length_s() / sample_period_s)) + 1;
 }
 
 }  // namespace netmc::sim

@@ -14,6 +14,7 @@
 
 #include "control/contour_group.hpp"
 #include "control/controller_catalog.hpp"
+#include "control/trajectory/multi_sine_reference.hpp"
 #include "control/trajectory/reference_trajectory.hpp"
 #include "control/trajectory/spatial_circle.hpp"
 #include "netsim/delay_model.hpp"
@@ -37,11 +38,13 @@ inline double resolve_evaluation_start(double requested_s, double reference_peri
   return requested_s > 0.0 ? requested_s : 2.0 * reference_period_s;
 }
 
-// A contour group of two axes (a planar trajectory) or three (a circle in space, thesis ch. 6):
-// one runner, one server loop and one data plane for both.
+// A contour group of two axes (a planar trajectory), three (a circle in space, thesis ch. 6) or
+// one (a tracking reference, thesis ch. 5): one runner, one server loop and one data plane for
+// all. Exactly one of the three references is set.
 struct ContourJob {
   std::shared_ptr<const control::ReferenceTrajectory> trajectory;  // two axes
   std::shared_ptr<const control::SpatialCircle> spatial_circle;    // three axes (then duration_s > 0)
+  std::shared_ptr<const control::MultiSineReference> axis_reference;  // one axis
   std::string plant_name;
   std::vector<std::shared_ptr<const plant::AxisPlant>> axes;  // prototypes, in group order
   std::string controller_name;
@@ -69,11 +72,12 @@ struct ContourJob {
 
   // Throws std::invalid_argument naming the field when the job cannot run.
   void validate() const;
-  std::size_t axis_count() const { return spatial_circle ? 3 : 2; }
+  std::size_t axis_count() const { return spatial_circle ? 3 : axis_reference ? 1 : 2; }
   // The group's contour and a fresh controller for it (throws std::invalid_argument
   // "controller: ..." for a name or gain the group cannot run).
   std::shared_ptr<const control::GroupContour> contour() const;
   std::unique_ptr<control::GroupController> make_controller() const;
+  double run_length_s() const;         // duration_s, or the reference's when 0
   std::size_t cycles() const;          // samples k = 0..N, so N + 1
   double deadline() const { return deadline_s > 0.0 ? deadline_s : sample_period_s; }
 };

@@ -137,7 +137,7 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   tau_cc_.push_back(job_.compute_delay_s);
 
   // Metrics from the true plant state and the exact contour.
-  const double contour_error = contour_->contour_error(true_position_);
+  const double contour_error = contour_->contour_error(true_position_, reference);
   if (!(std::abs(contour_error) <= job_.divergence_limit_m) || !step.command.allFinite()) {
     m.diverged = true;
     m.diverged_at_s = t;

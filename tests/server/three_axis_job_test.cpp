@@ -123,7 +123,7 @@ TEST(SpatialJob, BadSpecsNameTheField) {
   spec = tilted_circle_spec();
   spec.add_axes("stage2.a");
   spec.add_axes("stage2.b");
-  EXPECT_EQ(message(spec).rfind("axes: a 3-axis contour needs 3 axis names", 0), 0u) << message(spec);
+  EXPECT_EQ(message(spec).rfind("axes: a 3-axis job needs 3 axis names", 0), 0u) << message(spec);
   spec.add_axes("stage2.a");
   EXPECT_EQ(message(spec).rfind("axes: the axis names must differ", 0), 0u) << message(spec);
   EXPECT_EQ(axis_names(tilted_circle_spec()), (std::vector<std::string>{"x", "y", "z"}));
