@@ -56,13 +56,18 @@ int line_style(std::size_t index) { return static_cast<int>(index % 8) + 1; }
 constexpr std::array<const char*, 8> kColours{"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
                                               "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
 
+// The columns the figures read; y_ref and y only where the run has a y axis (a single-axis run,
+// thesis ch. 5, has x alone and its contour_error_m is the tracking error x - x_d).
 struct TraceColumns {
   std::size_t time, x_ref, y_ref, x, y, error, tau;
   explicit TraceColumns(const CsvTable& t)
-      : time(t.column("time_s")), x_ref(t.column("x_ref_m")), y_ref(t.column("y_ref_m")),
-        x(t.column("x_m")), y(t.column("y_m")), error(t.column("contour_error_m")),
+      : time(t.column("time_s")), x_ref(t.column("x_ref_m")),
+        y_ref(t.has_column("x_m") && !t.has_column("y_m") ? 0 : t.column("y_ref_m")), x(t.column("x_m")),
+        y(t.has_column("x_m") && !t.has_column("y_m") ? 0 : t.column("y_m")), error(t.column("contour_error_m")),
         tau(t.column("tau_x_s")) {}
 };
+
+bool single_axis(const CsvTable& table) { return !table.has_column("y_m"); }
 
 // First row of run `i`'s evaluation window (the steady metrics' window, e.g. after the thesis's
 // start-up transient), or 0 when the run has none or the trace ends before it: the figures
@@ -192,12 +197,15 @@ Figure contour_error_figure(const SimOutputs& outputs, const std::string& data_d
   figure.height_px = static_cast<int>(std::max<std::size_t>(2, n)) * 190 + 110;
   // Fixed room in pixels at the top (title) and bottom (tick labels and the time label).
   const double bottom = 70.0 / figure.height_px, top = 1.0 - 45.0 / figure.height_px;
+  // One axis: the error is the tracking error (thesis ch. 5's Figs. 5-5, 5-9).
+  const bool tracking = single_axis(outputs.traces.front().table);
   std::string body = std::string(kStyle) + fmt::format(
-      "set multiplot layout {},1 title \"Contour error vs time (last iteration of each run{})\" font ',13' "
+      "set multiplot layout {},1 title \"{} vs time (last iteration of each run{})\" font ',13' "
       "margins 0.09,0.97,{:.4f},{:.4f} spacing 0,0.045\n"
-      "set key top right box opaque samplen 1 font ',10'\nset ylabel 'e_c [{}m]'\nset format y '%g'\n"
+      "set key top right box opaque samplen 1 font ',10'\nset ylabel '{} [{}m]'\nset format y '%g'\n"
       "set offsets 0, 0, graph 0.35, graph 0.05\n",
-      n, window_note(outputs), bottom, top, "\xC2\xB5");
+      n, tracking ? "Tracking error x - x_d" : "Contour error", window_note(outputs), bottom, top,
+      tracking ? "x - x_d" : "e_c", "\xC2\xB5");
   for (std::size_t i = 0; i < n; ++i) {
     const auto& table = outputs.traces[i].table;
     const TraceColumns c(table);
@@ -211,9 +219,9 @@ Figure contour_error_figure(const SimOutputs& outputs, const std::string& data_d
     const std::string path = data_path(data_dir, fmt::format("contour_error-{}.dat", i + 1));
     write_file_atomically(path, dat);
     body += i + 1 == n ? "set xlabel 'time [s]'\nset format x '%g'\n" : "unset xlabel\nset format x ''\n";
-    body += fmt::format("plot {} using 1:2 with lines ls {} title '{}  (max |e_c| {:.2f} {}m)'\n",
-                        gnuplot_quote(in_script(path)), line_style(i), gnuplot_text(outputs.traces[i].label), max_um,
-                        "\xC2\xB5");
+    body += fmt::format("plot {} using 1:2 with lines ls {} title '{}  (max |{}| {:.2f} {}m)'\n",
+                        gnuplot_quote(in_script(path)), line_style(i), gnuplot_text(outputs.traces[i].label),
+                        tracking ? "x - x_d" : "e_c", max_um, "\xC2\xB5");
   }
   figure.body = body;
   return figure;
@@ -406,8 +414,15 @@ std::vector<Figure> estimate_figures(const SimOutputs& outputs, const std::strin
 }  // namespace
 
 std::vector<Figure> sim_figures(const SimOutputs& outputs, const std::string& data_dir) {
-  std::vector<Figure> figures{contour_figure(outputs, data_dir), contour_error_figure(outputs, data_dir),
-                              e_sum_figure(outputs, data_dir), tau_figure(outputs, data_dir)};
+  // The contour figure needs a plane; a study of single-axis runs has none.
+  const bool planar = std::none_of(outputs.traces.begin(), outputs.traces.end(),
+                                   [](const auto& trace) { return single_axis(trace.table); });
+  std::vector<Figure> figures;
+  if (planar) figures.push_back(contour_figure(outputs, data_dir));
+  for (auto figure : {contour_error_figure(outputs, data_dir), e_sum_figure(outputs, data_dir),
+                      tau_figure(outputs, data_dir)}) {
+    figures.push_back(std::move(figure));
+  }
   for (auto& figure : estimate_figures(outputs, data_dir)) figures.push_back(std::move(figure));
   return figures;
 }

@@ -95,9 +95,6 @@ every run. Output files are written whole, after every run has finished.)");
     if (!flags->plot_dir.empty() && std::any_of(plan.jobs.begin(), plan.jobs.end(), job::is_spatial_job)) {
       throw std::invalid_argument("--plot: the figures are planar; a three-axis run writes its traces with --csv");
     }
-    if (!flags->plot_dir.empty() && std::any_of(plan.jobs.begin(), plan.jobs.end(), job::is_single_axis_job)) {
-      throw std::invalid_argument("--plot: the figures are planar; a single-axis run writes its traces with --csv");
-    }
     // Checked before the study runs: a bad path fails in a millisecond, not after the work.
     if (!flags->study.json_path.empty()) check_output_path(flags->study.json_path, "--json");
     if (!flags->csv_dir.empty()) check_output_directory(flags->csv_dir, "--csv");

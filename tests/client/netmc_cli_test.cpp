@@ -65,6 +65,24 @@ TEST(NetmcCli, UsageErrorsExitWithCode2) {
   EXPECT_FALSE(std::filesystem::exists(figures));
 }
 
+// Single-axis runs (thesis ch. 5): the tracking error and the estimates are drawn, the planar
+// contour figure is not; the trace has the x columns alone and the estimates after tau_x_s.
+TEST(NetmcCli, SingleAxisRunsDrawTrackingErrorAndEstimates) {
+  const auto figures = scratch("single-axis-figures");
+  const Result result = run("sim --preset thesis-dead-zone --duration 0.2s --plot-format png --plot " + figures.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(std::filesystem::exists(figures / "contour_error.png"));
+  EXPECT_TRUE(std::filesystem::exists(figures / "estimates-3.png"));  // C3: theta_hat and d_c
+  EXPECT_FALSE(std::filesystem::exists(figures / "contour.png"));
+  std::ifstream file(figures / "traces" / "3-C3_I.csv");
+  ASSERT_TRUE(file) << "no trace of C3";
+  std::string header;
+  std::getline(file, header);
+  EXPECT_EQ(header,
+            "time_s,x_ref_m,x_m,x_measured_m,contour_error_m,contour_error_estimate_m,ux,Ux,ue,tau_x_s,"
+            "B_hat[1/s],A_hat[m/s^2],mr_hat[m/s^2/V],mrbr_hat[m/s^2],ml_hat[m/s^2/V],mlbl_hat[m/s^2],dc_hat[m/s^2]");
+}
+
 TEST(NetmcCli, ThreeAxisTracesHaveAColumnPerAxis) {
   const auto traces = scratch("spatial-traces");
   const Result result = run("sim --preset thesis-spatial --duration 0.1s --csv " + traces.string());
