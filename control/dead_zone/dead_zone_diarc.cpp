@@ -8,16 +8,7 @@ namespace netmc::control {
 
 void DeadZoneDiarcGains::validate() const {
   loop.validate();
-  for (int i = 0; i < 6; ++i) {
-    require_finite(lower[i], "controller.lower");
-    require_finite(upper[i], "controller.upper");
-    if (!(lower[i] <= initial_estimate[i] && initial_estimate[i] <= upper[i])) {
-      std::ostringstream text;
-      text << "controller.initial_estimate: expected lower <= initial <= upper, entry " << i << " is "
-           << initial_estimate[i] << " outside [" << lower[i] << ", " << upper[i] << "]";
-      throw std::invalid_argument(text.str());
-    }
-  }
+  require_initial_estimate_in_box(initial_estimate, lower, upper, "controller");
   // Assumption 5.3: the box keeps the slopes positive and the products of their signs, so every
   // inverse built from it is well defined.
   if (!(lower[2] > 0.0 && lower[4] > 0.0 && lower[3] >= 0.0 && upper[5] <= 0.0)) {
@@ -40,15 +31,7 @@ void DeadZoneDiarcGains::validate() const {
 
 DeadZoneDiarc::Estimator::Settings DeadZoneDiarc::estimator_settings(const DeadZoneDiarcGains& gains) {
   gains.validate();
-  Estimator::Settings out;
-  out.initial_estimate = gains.initial_estimate;
-  out.lower = gains.lower;
-  out.upper = gains.upper;
-  out.initial_covariance.setConstant(gains.initial_covariance);
-  out.forgetting = gains.forgetting;
-  out.normalization = gains.normalization;
-  out.covariance_limit = gains.covariance_limit;
-  return out;
+  return least_squares_settings<Estimator>(gains);
 }
 
 DeadZoneDiarc::DeadZoneDiarc(const DeadZoneDiarcGains& gains, double sample_period_s)

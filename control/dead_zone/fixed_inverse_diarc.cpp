@@ -47,16 +47,7 @@ FixedInverseDiarcGains FixedInverseDiarcGains::thesis(DeadZoneHandling handling)
 void FixedInverseDiarcGains::validate() const {
   loop.validate();
   inverse.validate("controller.inverse");
-  for (int i = 0; i < 4; ++i) {
-    require_finite(lower[i], "controller.lower");
-    require_finite(upper[i], "controller.upper");
-    if (!(lower[i] <= initial_estimate[i] && initial_estimate[i] <= upper[i])) {
-      std::ostringstream text;
-      text << "controller.initial_estimate: expected lower <= initial <= upper, entry " << i << " is "
-           << initial_estimate[i] << " outside [" << lower[i] << ", " << upper[i] << "]";
-      throw std::invalid_argument(text.str());
-    }
-  }
+  require_initial_estimate_in_box(initial_estimate, lower, upper, "controller");
   if (!(lower[2] > 0.0)) throw std::invalid_argument("controller.lower: expected E's lower bound > 0");
   require_positive(initial_covariance, "controller.initial_covariance");
   require_non_negative(forgetting, "controller.forgetting");
@@ -68,15 +59,7 @@ void FixedInverseDiarcGains::validate() const {
 
 FixedInverseDiarc::Estimator::Settings FixedInverseDiarc::estimator_settings(const FixedInverseDiarcGains& gains) {
   gains.validate();
-  Estimator::Settings out;
-  out.initial_estimate = gains.initial_estimate;
-  out.lower = gains.lower;
-  out.upper = gains.upper;
-  out.initial_covariance.setConstant(gains.initial_covariance);
-  out.forgetting = gains.forgetting;
-  out.normalization = gains.normalization;
-  out.covariance_limit = gains.covariance_limit;
-  return out;
+  return least_squares_settings<Estimator>(gains);
 }
 
 FixedInverseDiarc::FixedInverseDiarc(const FixedInverseDiarcGains& gains, double sample_period_s)

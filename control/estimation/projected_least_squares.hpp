@@ -10,7 +10,12 @@
 // Fixed-size Eigen throughout: update() does not allocate. The caller validates the settings.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <Eigen/Eigenvalues>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
 
 #include "control/task_space/box_projection.hpp"
 
@@ -76,5 +81,44 @@ class ProjectedLeastSquares {
   Vector estimate_;
   Covariance covariance_;
 };
+
+// The estimator's settings from an adaptive law's gains, which name them as the thesis does:
+// initial_estimate, lower, upper, initial_covariance (its diagonal, or one value for all),
+// forgetting, normalization, covariance_limit.
+template <class Estimator, class Gains>
+typename Estimator::Settings least_squares_settings(const Gains& gains) {
+  typename Estimator::Settings out;
+  out.initial_estimate = gains.initial_estimate;
+  out.lower = gains.lower;
+  out.upper = gains.upper;
+  if constexpr (std::is_arithmetic_v<std::decay_t<decltype(gains.initial_covariance)>>) {
+    out.initial_covariance.setConstant(gains.initial_covariance);
+  } else {
+    out.initial_covariance = gains.initial_covariance;
+  }
+  out.forgetting = gains.forgetting;
+  out.normalization = gains.normalization;
+  out.covariance_limit = gains.covariance_limit;
+  return out;
+}
+
+// theta_hat(0) within a finite box (the projection's precondition, thesis 3-29 / 5-16); throws
+// std::invalid_argument naming `prefix`.lower, .upper or .initial_estimate.
+template <class Vector>
+void require_initial_estimate_in_box(const Vector& initial, const Vector& lower, const Vector& upper,
+                                     const std::string& prefix) {
+  for (Eigen::Index i = 0; i < initial.size(); ++i) {
+    std::ostringstream text;
+    if (!std::isfinite(lower[i]) || !std::isfinite(upper[i])) {
+      text << prefix << (std::isfinite(lower[i]) ? ".upper" : ".lower") << ": expected finite bounds, entry " << i;
+    } else if (!(lower[i] <= initial[i] && initial[i] <= upper[i])) {
+      text << prefix << ".initial_estimate: expected lower <= initial <= upper, entry " << i << " is " << initial[i]
+           << " outside [" << lower[i] << ", " << upper[i] << "]";
+    } else {
+      continue;
+    }
+    throw std::invalid_argument(text.str());
+  }
+}
 
 }  // namespace netmc::control

@@ -10,29 +10,13 @@
 
 namespace netmc::control {
 
-namespace {
-
-ProjectedLeastSquares<8, 2, 6>::Settings least_squares_settings(const DiarcGains& gains) {
-  ProjectedLeastSquares<8, 2, 6>::Settings out;
-  out.initial_estimate = gains.initial_estimate;
-  out.lower = gains.lower;
-  out.upper = gains.upper;
-  out.initial_covariance = gains.initial_covariance;
-  out.forgetting = gains.forgetting;
-  out.normalization = gains.normalization;
-  out.covariance_limit = gains.covariance_limit;
-  return out;
-}
-
-}  // namespace
-
 TaskSpaceDiarc::TaskSpaceDiarc(const DiarcGains& gains, double sample_period_s,
                                std::shared_ptr<const TaskFrame> frame,
                                const InitializationFilterSettings& filter, LocalFrameRate local_rate)
     : gains_(gains),
       h_(require_positive(sample_period_s, "sample period")),
       sliding_(gains.lambda, sample_period_s, std::move(frame), filter, local_rate),
-      estimator_(least_squares_settings(gains)) {
+      estimator_(least_squares_settings<ProjectedLeastSquares<8, 2, 6>>(gains)) {
   require_non_negative(gains.forgetting, "diarc forgetting");
   require_non_negative(gains.normalization, "diarc normalization");
   require_positive(gains.covariance_limit, "diarc covariance limit");
