@@ -593,4 +593,29 @@ void parse_disturbance(std::string_view text, netmc::v1::JobSpec& job) {
   }
 }
 
+void parse_dead_zone_inverse(std::string_view text, netmc::v1::JobSpec& job) {
+  constexpr std::string_view flag = "--dead-zone-inverse";
+  const std::size_t colon = text.find(':');
+  if (colon == std::string_view::npos) {
+    throw std::invalid_argument("--dead-zone-inverse: expected AXIS:b_r=..,b_l=..[,m_r=..,m_l=..] (volts, slopes V/V), got '" +
+                                std::string(text.substr(0, 80)) + "'");
+  }
+  const std::string axis = job_axis(job, trim(text.substr(0, colon)), flag);
+  const auto keys = parse_keys(text.substr(colon + 1), flag, {"b_r", "b_l", "m_r", "m_l"});
+  auto* controller = job.mutable_controller();
+  netmc::v1::AxisDeadZone* entry = nullptr;
+  for (auto& existing : *controller->mutable_dead_zone_inverse()) {
+    if (existing.axis() == axis) entry = &existing;
+  }
+  if (!entry) {
+    entry = controller->add_dead_zone_inverse();
+    entry->set_axis(axis);
+  }
+  auto& d = *entry->mutable_dead_zone();
+  d.set_right_break_v(key_quantity(keys, "b_r", Quantity::plain, flag));
+  d.set_left_break_v(key_quantity(keys, "b_l", Quantity::plain, flag));
+  d.set_right_slope(key_quantity(keys, "m_r", Quantity::plain, flag, 1.0));
+  d.set_left_slope(key_quantity(keys, "m_l", Quantity::plain, flag, 1.0));
+}
+
 }  // namespace netmc::cli

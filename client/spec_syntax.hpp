@@ -54,5 +54,8 @@ void parse_plant(std::string_view text, netmc::v1::JobSpec& job);
 // --disturbance AXIS:constant=..,step=..,on=..,off=..,sine=..,hz=..,phase=..,noise=..,band=..,seed=..
 // (amplitudes in the plant's input unit): the disturbance of one axis of `job`.
 void parse_disturbance(std::string_view text, netmc::v1::JobSpec& job);
+// --dead-zone-inverse AXIS:b_r=..,b_l=..[,m_r=..,m_l=..] (volts; slopes 1 when omitted): a fixed
+// dead-zone inverse (thesis eq. 5-4) between the controller and that axis of `job`.
+void parse_dead_zone_inverse(std::string_view text, netmc::v1::JobSpec& job);
 
 }  // namespace netmc::cli

@@ -32,7 +32,12 @@ Range range_of(const std::string& path, const std::string& name) {
                                                  "loss_in_good", "loss_in_bad", "forgetting"};
   static const std::set<std::string> any{"center_x_m", "center_y_m", "center_z_m", "x0_m", "y0_m", "x1_m", "y1_m",
                                          "start_angle_rad", "normal_x", "normal_y", "normal_z",
-                                         "start_x", "start_y", "start_z"};
+                                         "start_x", "start_y", "start_z",
+                                         // multi-sine terms; a dead zone's left break point; the
+                                         // dead-zone DIARC's theta (m_l b_l < 0), checked when built
+                                         "offset_m", "amplitude_m", "phase_rad", "left_break_v", "initial_estimate",
+                                         "lower", "upper",
+                                         "value"};  // a plant parameter (its plant checks its range)
   if (ends_with(path, "line.duration_s")) return Range::positive;
   if (positive.contains(name)) return Range::positive;
   if (probability.contains(name)) return Range::probability;

@@ -65,6 +65,7 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     // after them, and keys the new plant does not have are refused when the job is built.
     if (!f.plant.empty()) parse_plant(f.plant, job);
     for (const auto& disturbance : f.disturbances) parse_disturbance(disturbance, job);
+    for (const auto& inverse : f.dead_zone_inverses) parse_dead_zone_inverse(inverse, job);
     if (!f.delay.empty()) *job.mutable_downlink()->mutable_delay() = parse_delay(f.delay, "--delay");
     if (!f.uplink_delay.empty()) {
       *job.mutable_uplink()->mutable_delay() = parse_delay(f.uplink_delay, "--uplink-delay");
@@ -194,7 +195,7 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
 
 void add_job_override_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--plant", flags.plant,
-                  "seed001 | ballscrew | linmotor | linmotor-flex | stage004, with parameter overrides for every axis or one: "
+                  "seed001 | ballscrew | linmotor | linmotor-flex | stage004 | hiwin, with parameter overrides for every axis or one: "
                   "ballscrew:load_kg=3 | ballscrew:y.load_kg=3,x.damping_n_m_s_rad=0.3 "
                   "(netmc sim --plant-parameters NAME lists the keys)")
       ->type_name("NAME[:[AXIS.]KEY=VALUE,...]");
@@ -203,6 +204,11 @@ void add_job_override_flags(CLI::App* app, StudyFlags& flags) {
                   "y:step=0.8,on=2.2s,off=5.2s | x:sine=0.2,hz=2[,phase=RAD] | x:noise=0.05,band=50[,seed=N] "
                   "| x:constant=0.1 (parts add up)")
       ->type_name("AXIS:PART=..,...");
+  app->add_option("--dead-zone-inverse", flags.dead_zone_inverses,
+                  "A fixed dead-zone inverse (thesis eq. 5-4) between the controller and one axis, repeatable: "
+                  "x:b_r=0.3,b_l=-0.25[,m_r=0.9,m_l=1] (break points in V, slopes V/V; thesis 5.5: identify them "
+                  "with a single-axis axis-diarc-dead-zone run)")
+      ->type_name("AXIS:b_r=..,b_l=..,...");
   app->add_option("--uplink-delay", flags.uplink_delay, "Sensor->controller delay (same forms as --delay)");
   app->add_option("--loss", flags.loss, "Setpoint loss: none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]");
   app->add_option("--uplink-loss", flags.uplink_loss, "Feedback loss (same forms as --loss)");

@@ -21,6 +21,7 @@ struct StudyFlags {
   int iterations = 0;
   long long seed = -1;
   std::vector<std::string> disturbances;  // --disturbance, one per axis
+  std::vector<std::string> dead_zone_inverses;  // --dead-zone-inverse, one per axis
   std::string clock;
   std::string axes;
   std::string json_path;

@@ -137,7 +137,7 @@ std::unique_ptr<TrackingController> make_tracking_controller(std::string_view na
                                                              double sample_period_s) {
   try {
     if (name == "axis-diarc-dead-zone") {
-      DeadZoneDiarcGains gains;
+      DeadZoneDiarcGains gains = settings.dead_zone_diarc;
       gains.loop = settings.axis_diarc;
       return std::make_unique<DeadZoneDiarc>(gains, sample_period_s);
     }

@@ -61,7 +61,11 @@ struct ControllerSettings {
   // the thesis's Exp I by default) and the adaptive variable-structure law of C5.
   DiarcLoopGains axis_diarc;
   DeadZoneEstimate exact_dead_zone = thesis_dead_zone_inverse(DeadZoneHandling::exact_inverse);
+  DeadZoneDiarcGains dead_zone_diarc;  // C3's estimator (its `loop` is axis_diarc)
   AdaptiveVariableStructureGains avsc;
+  // Thesis section 5.5: a fixed dead-zone inverse per axis of the group, in order, between the
+  // controller and the axes (volts); empty: none.
+  std::vector<DeadZoneEstimate> dead_zone_inverse;
   std::string estimator = "curvature";
 };
 

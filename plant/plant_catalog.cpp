@@ -293,24 +293,45 @@ std::vector<Setting<ResonantStageParameters>> stage004_settings() {
   return out;
 }
 
+// The input dead zone of thesis eq. 5-2, in front of an axis: hiwin's is part of its model; every
+// other plant takes one per axis through the same keys (thesis section 5.5: a contouring stage
+// whose drives have dead zones), none by default.
+std::vector<Setting<DeadZoneParameters>> dead_zone_settings(const DeadZoneParameters& nominal, const std::string& unit) {
+  using P = DeadZoneParameters;
+  const auto number = [](double v) {
+    std::string text = std::to_string(v);
+    text.erase(text.find_last_not_of('0') + 1);
+    if (text.back() == '.') text.pop_back();
+    return text;
+  };
+  return {
+      {"dead_zone_right_v", "b_r, right break point of the input dead zone (" + unit + "), >= 0; " + number(nominal.right_break_v),
+       [](P& p, double v) { p.right_break_v = v; }},
+      {"dead_zone_left_v", "b_l, left break point of the input dead zone (" + unit + "), <= 0; " + number(nominal.left_break_v),
+       [](P& p, double v) { p.left_break_v = v; }},
+      {"dead_zone_right_slope", "m_r, right slope of the dead zone (" + unit + "/" + unit + "), > 0; " + number(nominal.right_slope),
+       [](P& p, double v) { p.right_slope = v; }},
+      {"dead_zone_left_slope", "m_l, left slope of the dead zone (" + unit + "/" + unit + "), > 0; " + number(nominal.left_slope),
+       [](P& p, double v) { p.left_slope = v; }},
+  };
+}
+
 std::vector<Setting<HiwinParameters>> hiwin_settings() {
   using P = HiwinParameters;
-  return {
+  std::vector<Setting<P>> out = {
       {"viscous_1_s", "B, viscous friction (1/s); 4.3", [](P& p, double v) { p.viscous = v; }},
       {"coulomb_m_s2", "A, Coulomb friction (m/s^2); 0.9", [](P& p, double v) { p.coulomb = v; }},
       {"gain_m_s2_v", "E, motor input gain ((m/s^2)/V); 3.6", [](P& p, double v) { p.gain = v; }},
       {"friction_velocity_scale_m_s", "tanh width of S_f (m/s); 1.745e-4",
        [](P& p, double v) { p.friction_velocity_scale = v; }},
-      {"dead_zone_right_v", "b_r, right break point of the input dead zone (V), >= 0; 1.2",
-       [](P& p, double v) { p.dead_zone.right_break_v = v; }},
-      {"dead_zone_left_v", "b_l, left break point of the input dead zone (V), <= 0; -1",
-       [](P& p, double v) { p.dead_zone.left_break_v = v; }},
-      {"dead_zone_right_slope", "m_r, right slope of the dead zone (V/V), > 0; 0.9",
-       [](P& p, double v) { p.dead_zone.right_slope = v; }},
-      {"dead_zone_left_slope", "m_l, left slope of the dead zone (V/V), > 0; 1 (0.9: Exp II, eq. 5-54)",
-       [](P& p, double v) { p.dead_zone.left_slope = v; }},
       {"max_substep_s", "RK4 sub-step bound (s); 5e-5", [](P& p, double v) { p.max_substep_s = v; }},
   };
+  // Exp I's dead zone (5-51); Exp II's symmetric one (5-54) is dead_zone_left_slope = 0.9.
+  for (auto& dead_zone : dead_zone_settings(HiwinParameters{}.dead_zone, "V")) {
+    out.push_back({dead_zone.key, dead_zone.description,
+                   [apply = dead_zone.apply](P& p, double v) { apply(p.dead_zone, v); }});
+  }
+  return out;
 }
 
 template <class P>
@@ -377,19 +398,31 @@ SecondOrderAxisParameters seed001_axis_parameters(std::size_t axis) {
 std::vector<std::string> plant_names() { return {std::begin(kNames), std::end(kNames)}; }
 
 std::vector<PlantParameter> plant_parameters(std::string_view name) {
-  if (name == "seed001") return describe_settings(seed001_settings());
-  if (name == "ballscrew") return describe_settings(ballscrew_settings());
-  if (name == "linmotor") return describe_settings(linmotor_settings());
-  if (name == "stage004") return describe_settings(stage004_settings());
-  if (name == "linmotor-flex") return describe_settings(linmotor_flex_settings());
   if (name == "hiwin") return describe_settings(hiwin_settings());
-  throw std::invalid_argument("plant: unknown name '" + std::string(name) + "' (expected one of: " + expected_names() + ")");
+  std::vector<PlantParameter> out;
+  if (name == "seed001") {
+    out = describe_settings(seed001_settings());
+  } else if (name == "ballscrew") {
+    out = describe_settings(ballscrew_settings());
+  } else if (name == "linmotor") {
+    out = describe_settings(linmotor_settings());
+  } else if (name == "stage004") {
+    out = describe_settings(stage004_settings());
+  } else if (name == "linmotor-flex") {
+    out = describe_settings(linmotor_flex_settings());
+  } else {
+    throw std::invalid_argument("plant: unknown name '" + std::string(name) + "' (expected one of: " + expected_names() + ")");
+  }
+  for (const auto& p : describe_settings(dead_zone_settings({}, plant_input_unit(name)))) out.push_back(p);
+  return out;
 }
 
 std::string plant_input_unit(std::string_view name) {
   if (name == "seed001") return "m/s^2";
   if (name == "stage004") return "N";
-  plant_parameters(name);  // throws for an unknown name
+  if (std::find(std::begin(kNames), std::end(kNames), name) == std::end(kNames)) {
+    throw std::invalid_argument("plant: unknown name '" + std::string(name) + "' (expected one of: " + expected_names() + ")");
+  }
   return "V";
 }
 
@@ -422,7 +455,27 @@ AxisSet make_plant_set(std::string_view name, std::size_t axis_count, const std:
   AxisSet set;
   set.description = title;
   for (std::size_t axis = 0; axis < axis_count; ++axis) {
-    const AxisOverrides* changes = axis < overrides.size() ? &overrides[axis] : nullptr;
+    // A dead zone in front of the axis (every plant but hiwin, whose model holds its own): its
+    // keys apply to a DeadZoneInput around the plant, the rest to the plant.
+    AxisOverrides plant_changes;
+    DeadZoneParameters dead_zone;
+    bool has_dead_zone = false;
+    if (axis < overrides.size()) {
+      plant_changes.disturbance = overrides[axis].disturbance;
+      const auto keys = dead_zone_settings({}, "");
+      for (const auto& [key, value] : overrides[axis].parameters) {
+        const auto it = std::find_if(keys.begin(), keys.end(), [&](const auto& k) { return k.key == key; });
+        if (name == "hiwin" || it == keys.end()) {
+          plant_changes.parameters.emplace_back(key, value);
+        } else if (!std::isfinite(value)) {
+          throw std::invalid_argument("plant: " + key + " must be a finite number (got " + std::to_string(value) + ")");
+        } else {
+          it->apply(dead_zone, value);
+          has_dead_zone = true;
+        }
+      }
+    }
+    const AxisOverrides* changes = axis < overrides.size() ? &plant_changes : nullptr;
     std::unique_ptr<AxisPlant> plant;
     if (name == "seed001") {
       plant = std::make_unique<SecondOrderAxis>(with_overrides(seed001_axis_parameters(axis), seed001_settings(), changes, name));
@@ -439,6 +492,13 @@ AxisSet make_plant_set(std::string_view name, std::size_t axis_count, const std:
     } else {
       plant = std::make_unique<ResonantStageAxis>(
           with_overrides(stage004_axis_parameters(axis), stage004_settings(), changes, name));
+    }
+    if (has_dead_zone) {
+      try {
+        plant = std::make_unique<DeadZoneInput>(dead_zone, std::move(plant));
+      } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument(std::string("plant: dead zone: ") + error.what());
+      }
     }
     plant->reset(0.0, 0.0);
     set.description += std::string(" | ") + kAxisLabels[axis] + ": " + plant->describe();

@@ -376,6 +376,41 @@ control::FilteredPidCrossCouplingGains build_low_pass_pid(const netmc::v1::LowPa
   return g;
 }
 
+// A dead zone of thesis eq. 5-2 in volts (break points, slopes) as the inverse's estimate.
+control::DeadZoneEstimate build_dead_zone(const netmc::v1::DeadZoneSpec& d, const std::string& field) {
+  const auto within = [&](double value, double low, double high, const char* name, const char* form) {
+    if (!(value >= low && value <= high)) {
+      throw std::invalid_argument(field + "." + name + ": expected " + form + ", got " + fmt::format("{:g}", value));
+    }
+  };
+  within(d.right_break_v(), 0.0, 1e3, "right_break_v", "a voltage in [0, 1000]");
+  within(d.left_break_v(), -1e3, 0.0, "left_break_v", "a voltage in [-1000, 0]");
+  within(d.right_slope(), 1e-6, 1e6, "right_slope", "a slope in [1e-6, 1e6]");
+  within(d.left_slope(), 1e-6, 1e6, "left_slope", "a slope in [1e-6, 1e6]");
+  return {d.right_slope(), d.right_slope() * d.right_break_v(), d.left_slope(), d.left_slope() * d.left_break_v()};
+}
+
+// controller.dead_zone_inverse by axis name, in the group's order (none: no gap, slope 1).
+std::vector<control::DeadZoneEstimate> build_dead_zone_inverse(const netmc::v1::JobSpec& spec) {
+  const auto& entries = spec.controller().dead_zone_inverse();
+  if (entries.empty()) return {};
+  const auto names = axis_names(spec);
+  std::vector<control::DeadZoneEstimate> out(names.size());
+  std::vector<bool> seen(names.size(), false);
+  for (int i = 0; i < entries.size(); ++i) {
+    const std::string field = "controller.dead_zone_inverse[" + std::to_string(i) + "]";
+    const auto it = std::find(names.begin(), names.end(), entries[i].axis());
+    if (it == names.end()) {
+      throw std::invalid_argument(field + ".axis: expected an axis of the job, got '" + entries[i].axis().substr(0, 64) + "'");
+    }
+    const auto index = static_cast<std::size_t>(it - names.begin());
+    if (seen[index]) throw std::invalid_argument(field + ".axis: axis '" + entries[i].axis() + "' is given twice");
+    seen[index] = true;
+    out[index] = build_dead_zone(entries[i].dead_zone(), field + ".dead_zone");
+  }
+  return out;
+}
+
 control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   control::ControllerSettings s;
   s.adrc = build_adrc(c.adrc(), s.adrc, "controller.adrc");
@@ -410,20 +445,30 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
                "controller.axis_diarc.disturbance_adaptation");
   set_positive(a.has_disturbance_bound(), a.disturbance_bound(), s.axis_diarc.disturbance_bound,
                "controller.axis_diarc.disturbance_bound");
-  if (a.has_exact_dead_zone()) {
-    const auto& d = a.exact_dead_zone();
-    const std::string field = "controller.axis_diarc.exact_dead_zone.";
-    const auto within = [&](double value, double low, double high, const char* name, const char* form) {
-      if (!(value >= low && value <= high)) {
-        throw std::invalid_argument(field + name + ": expected " + form + ", got " + fmt::format("{:g}", value));
+  if (a.has_exact_dead_zone()) s.exact_dead_zone = build_dead_zone(a.exact_dead_zone(), "controller.axis_diarc.exact_dead_zone");
+  const auto theta = [](const google::protobuf::RepeatedField<double>& values, control::DeadZoneTheta& target,
+                        const std::string& field) {
+    if (values.empty()) return;
+    if (values.size() != 6) {
+      throw std::invalid_argument(field + ": expected 6 numbers [B, A, m_r, m_r b_r, m_l, m_l b_l], got " +
+                                  std::to_string(values.size()));
+    }
+    for (int i = 0; i < 6; ++i) {
+      if (!std::isfinite(values[i]) || std::abs(values[i]) > 1e6) {
+        throw std::invalid_argument(field + ": expected finite numbers within +-1e6");
       }
-    };
-    within(d.right_break_v(), 0.0, 1e3, "right_break_v", "a voltage in [0, 1000]");
-    within(d.left_break_v(), -1e3, 0.0, "left_break_v", "a voltage in [-1000, 0]");
-    within(d.right_slope(), 1e-6, 1e6, "right_slope", "a slope in [1e-6, 1e6]");
-    within(d.left_slope(), 1e-6, 1e6, "left_slope", "a slope in [1e-6, 1e6]");
-    s.exact_dead_zone = {d.right_slope(), d.right_slope() * d.right_break_v(), d.left_slope(),
-                         d.left_slope() * d.left_break_v()};
+      target[i] = values[i];
+    }
+  };
+  theta(a.initial_estimate(), s.dead_zone_diarc.initial_estimate, "controller.axis_diarc.initial_estimate");
+  theta(a.lower(), s.dead_zone_diarc.lower, "controller.axis_diarc.lower");
+  theta(a.upper(), s.dead_zone_diarc.upper, "controller.axis_diarc.upper");
+  if (!a.lower().empty() || !a.upper().empty()) {
+    // Lemma 5.2: beyond H = the widest spread of m_r b_r or m_l b_l over the box, the demand is
+    // outside the gap whatever the estimates (the thesis's H = 2 is this for its box 5-53).
+    const auto& box = s.dead_zone_diarc;
+    box.validate();
+    s.dead_zone_diarc.estimation_threshold = std::max(box.upper[3] - box.lower[3], box.upper[5] - box.lower[5]);
   }
   const auto& v = c.avsc();
   set_positive(v.has_c1(), v.c1(), s.avsc.c1, "controller.avsc.c1");
@@ -661,10 +706,22 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   }
   job.plant_name = spec.plant();
   const auto overrides = build_plant_overrides(spec, job.axis_count());
-  auto plants = in_field("plant", [&] { return plant::make_plant_set(spec.plant(), job.axis_count(), overrides); });
-  for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
+  if (job.axis_reference) {
+    // One axis of a stage: named y (or z), it is the stage's Y (Z) axis with that axis's
+    // parameters (thesis 5.5 identifies each contouring axis's dead zone on its own).
+    const auto name = axis_names(spec).front();
+    const std::size_t index = name == "y" ? 1 : name == "z" ? 2 : 0;
+    std::vector<plant::AxisOverrides> placed(index + 1);
+    if (!overrides.empty()) placed[index] = overrides.front();
+    auto plants = in_field("plant", [&] { return plant::make_plant_set(spec.plant(), index + 1, placed); });
+    job.axes.emplace_back(std::move(plants.axes[index]));
+  } else {
+    auto plants = in_field("plant", [&] { return plant::make_plant_set(spec.plant(), job.axis_count(), overrides); });
+    for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
+  }
   job.controller_name = spec.controller().name();
   job.controller = in_field("controller", [&] { return build_settings(spec.controller()); });
+  job.controller.dead_zone_inverse = build_dead_zone_inverse(spec);
   job.uplink = build_link(spec.uplink(), "uplink");
   job.downlink = build_link(spec.downlink(), "downlink");
   job.sensor.resolution_m = spec.sensor().resolution_m();

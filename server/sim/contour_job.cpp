@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "control/dead_zone_compensated_group.hpp"
 #include "control/planar_contour_group.hpp"
 #include "control/single_axis_group.hpp"
 #include "control/spatial_contour_group.hpp"
@@ -75,11 +76,18 @@ std::shared_ptr<const control::GroupContour> ContourJob::contour() const {
 }
 
 std::unique_ptr<control::GroupController> ContourJob::make_controller() const {
+  std::unique_ptr<control::GroupController> out;
   if (spatial_circle) {
-    return control::make_spatial_group_controller(controller_name, controller, sample_period_s, spatial_circle);
+    out = control::make_spatial_group_controller(controller_name, controller, sample_period_s, spatial_circle);
+  } else if (axis_reference) {
+    out = control::make_tracking_group_controller(controller_name, controller, sample_period_s);
+  } else {
+    out = control::make_planar_group_controller(controller_name, controller, sample_period_s, *trajectory);
   }
-  if (axis_reference) return control::make_tracking_group_controller(controller_name, controller, sample_period_s);
-  return control::make_planar_group_controller(controller_name, controller, sample_period_s, *trajectory);
+  if (controller.dead_zone_inverse.empty()) return out;
+  require(controller.dead_zone_inverse.size() == axis_count(),
+          "controller.dead_zone_inverse: expected one dead zone per axis of the group");
+  return std::make_unique<control::DeadZoneCompensatedGroup>(std::move(out), controller.dead_zone_inverse);
 }
 
 double ContourJob::run_length_s() const {

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -92,6 +93,42 @@ TEST(PlantCatalog, SetsAreDrivenByAnInput) {
       EXPECT_GT(axis->position(), 0.0) << name;
       EXPECT_GT(axis->velocity(), 0.0) << name;
     }
+  }
+}
+
+// Thesis 5.5: any plant takes an input dead zone per axis; the axis with one does not move for a
+// held input inside the gap and moves as the plain axis does for the input shifted by b_r.
+TEST(PlantCatalog, AnyPlantTakesAnInputDeadZonePerAxis) {
+  for (const auto& name : plant_names()) {
+    const auto keys = plant_parameters(name);
+    EXPECT_NE(std::find_if(keys.begin(), keys.end(), [](const auto& k) { return k.key == "dead_zone_left_slope"; }),
+              keys.end())
+        << name;
+  }
+  AxisOverrides x, no_cogging;  // the cogging force would move the axis at rest
+  no_cogging.parameters = {{"cogging_scale", 0.0}};
+  x.parameters = {{"cogging_scale", 0.0}, {"dead_zone_right_v", 0.3}, {"dead_zone_left_v", -0.25},
+                  {"dead_zone_right_slope", 1.0}};
+  auto with = make_plant_set("linmotor", 2, {x, no_cogging});
+  auto plain = make_plant_set("linmotor", 2, {no_cogging, no_cogging});
+  with.axes[0]->advance(0.5, 0.29);  // in the gap
+  EXPECT_EQ(with.axes[0]->position(), 0.0);
+  with.axes[0]->reset(0.0, 0.0);
+  with.axes[0]->advance(0.3, 1.3);
+  plain.axes[0]->advance(0.3, 1.0);
+  EXPECT_NEAR(with.axes[0]->position(), plain.axes[0]->position(), 1e-12);
+  EXPECT_GT(with.axes[0]->position(), 1e-3);
+  // Y has none: the same as the plain Y.
+  with.axes[1]->advance(0.3, 0.2);
+  plain.axes[1]->advance(0.3, 0.2);
+  EXPECT_EQ(with.axes[1]->position(), plain.axes[1]->position());
+  AxisOverrides bad;
+  bad.parameters = {{"dead_zone_left_v", 0.1}};
+  try {
+    make_plant_set("linmotor", 1, {bad});
+    ADD_FAILURE() << "accepted a left break point above 0";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("left_break_v"), std::string::npos) << error.what();
   }
 }
 
