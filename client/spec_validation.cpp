@@ -37,7 +37,9 @@ Range range_of(const std::string& path, const std::string& name) {
                                          // dead-zone DIARC's theta (m_l b_l < 0), checked when built
                                          "offset_m", "amplitude_m", "phase_rad", "left_break_v", "initial_estimate",
                                          "lower", "upper",
-                                         "value"};  // a plant parameter (its plant checks its range)
+                                         "value",  // a plant parameter (its plant checks its range)
+                                         // a disturbance pushes either way
+                                         "amplitude", "constant"};
   if (ends_with(path, "line.duration_s")) return Range::positive;
   if (positive.contains(name)) return Range::positive;
   if (probability.contains(name)) return Range::probability;

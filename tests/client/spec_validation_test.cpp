@@ -69,5 +69,25 @@ TEST(SpecValidation, AcceptsWhatProtobufWritesAndItsCamelCaseNames) {
   EXPECT_EQ(error_of(R"({"trajectory": null, "seed": "42", "iterations": 3.0})"), "");
 }
 
+// Every preset's jobs as protobuf writes them pass the checks: signed fields (a single-axis
+// reference's phases, a dead zone's left break point and theta, a symmetric dead zone's plant
+// parameters) are not refused as negative.
+TEST(SpecValidation, AcceptsEveryPresetsJobsAndSignedFields) {
+  for (const auto& name : preset_names()) {
+    for (auto job : make_preset(name).jobs) {
+      job::apply_defaults(job);
+      EXPECT_EQ(error_of(job::to_json(job)), "") << name << ": " << job.name();
+    }
+  }
+  EXPECT_EQ(error_of(R"({"plant_axes": [{"axis": "y", "parameters": [{"key": "dead_zone_left_v", "value": -0.3}],
+                         "disturbance": {"step": {"amplitude": -0.8, "on_s": 2.2}, "constant": -0.1,
+                                         "sine": {"amplitude": -0.2, "frequency_hz": 2}}}],
+                         "controller": {"axis_diarc": {"lower": [1, 0.3, 5, 1.5, 5, -3]},
+                                        "dead_zone_inverse": [{"axis": "x", "dead_zone": {"left_break_v": -0.25}}]}})"),
+            "");
+  EXPECT_EQ(error_of(R"({"plant_axes": [{"axis": "y", "disturbance": {"sine": {"frequency_hz": -2}}}]})"),
+            "spec.json: plant_axes[0].disturbance.sine.frequency_hz: expected a non-negative number, got -2");
+}
+
 }  // namespace
 }  // namespace netmc::cli
