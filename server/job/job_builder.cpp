@@ -295,7 +295,8 @@ control::AdrcGains build_adrc(const netmc::v1::AdrcGains& a, control::AdrcGains 
   return base;
 }
 
-control::MfaDtsmcGains build_mfa_dtsmc(const netmc::v1::MfaDtsmcGains& m, control::MfaDtsmcGains g) {
+control::MfaDtsmcGains build_mfa_dtsmc(const netmc::v1::MfaDtsmcGains& m, control::MfaDtsmcGains g,
+                                       const std::string& field = "controller.mfa_dtsmc") {
   auto& e = g.estimator;
   auto& t = g.sliding;
   if (m.has_mu()) e.mu = m.mu();
@@ -318,10 +319,12 @@ control::MfaDtsmcGains build_mfa_dtsmc(const netmc::v1::MfaDtsmcGains& m, contro
   if (m.has_lambda()) t.lambda = m.lambda();
   if (m.has_lambda_s()) g.switching_gain = m.lambda_s();
   if (m.has_delta()) g.contour_weight = m.delta();
+  if (m.has_data_model()) g.data_model = control::parse_data_model_form(m.data_model(), field + ".data_model");
   return g;
 }
 
-control::CompactFormMfacGains build_mfac(const netmc::v1::MfacGains& m, control::CompactFormMfacGains g) {
+control::CompactFormMfacGains build_mfac(const netmc::v1::MfacGains& m, control::CompactFormMfacGains g,
+                                         const std::string& field = "controller.mfac") {
   if (m.has_mu()) g.mu = m.mu();
   if (m.has_lambda()) g.lambda = m.lambda();
   if (m.has_rho()) g.rho = m.rho();
@@ -329,6 +332,7 @@ control::CompactFormMfacGains build_mfac(const netmc::v1::MfacGains& m, control:
   if (m.has_epsilon()) g.epsilon = m.epsilon();
   if (m.has_delta()) g.contour_weight = m.delta();
   if (m.has_phi_initial()) g.phi_initial = m.phi_initial();
+  if (m.has_data_model()) g.data_model = control::parse_data_model_form(m.data_model(), field + ".data_model");
   return g;
 }
 
@@ -429,9 +433,9 @@ control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
   s.pid = build_pid(c.pid(), s.pid);
   if (c.has_pid_y()) s.pid_y = build_pid(c.pid_y(), s.pid);
   s.mfa_dtsmc = build_mfa_dtsmc(c.mfa_dtsmc(), s.mfa_dtsmc);
-  if (c.has_mfa_dtsmc_y()) s.mfa_dtsmc_y = build_mfa_dtsmc(c.mfa_dtsmc_y(), s.mfa_dtsmc);
+  if (c.has_mfa_dtsmc_y()) s.mfa_dtsmc_y = build_mfa_dtsmc(c.mfa_dtsmc_y(), s.mfa_dtsmc, "controller.mfa_dtsmc_y");
   s.mfac = build_mfac(c.mfac(), s.mfac);
-  if (c.has_mfac_y()) s.mfac_y = build_mfac(c.mfac_y(), s.mfac);
+  if (c.has_mfac_y()) s.mfac_y = build_mfac(c.mfac_y(), s.mfac, "controller.mfac_y");
   if (c.pidccc().has_kp()) s.pidccc.kp = c.pidccc().kp();
   if (c.pidccc().has_ki()) s.pidccc.ki = c.pidccc().ki();
   if (c.pidccc().has_kd()) s.pidccc.kd = c.pidccc().kd();
