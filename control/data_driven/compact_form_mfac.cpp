@@ -6,18 +6,6 @@
 #include "control/parameter_check.hpp"
 
 namespace netmc::control {
-namespace {
-
-FullFormDataModelGains full_form_gains(const CompactFormMfacGains& g) {
-  FullFormDataModelGains f;
-  f.eta = g.eta;
-  f.mu = g.mu;
-  f.epsilon = g.epsilon;
-  f.b0_initial = g.phi_initial;
-  return f;
-}
-
-}  // namespace
 
 CompactFormMfacAxis::CompactFormMfacAxis(const CompactFormMfacGains& gains)
     : gains_(gains), full_(full_form_gains(gains)) {

@@ -77,6 +77,18 @@ struct FullFormDataModelGains {
   double a1_initial = 2.0, a2_initial = -1.0;    // the double integrator
 };
 
+// A law's full-form gains from its own (eta, mu, epsilon, phi_initial): the compact form's step,
+// penalty, reset threshold and Phi^(1) carry over, b0 starting at Phi^(1).
+template <class Gains>
+FullFormDataModelGains full_form_gains(const Gains& g) {
+  FullFormDataModelGains f;
+  f.eta = g.eta;
+  f.mu = g.mu;
+  f.epsilon = g.epsilon;
+  f.b0_initial = g.phi_initial;
+  return f;
+}
+
 class FullFormDataModel {
  public:
   explicit FullFormDataModel(const FullFormDataModelGains& gains);

@@ -9,15 +9,6 @@ namespace {
 
 double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
 
-FullFormDataModelGains full_form_gains(const DataModelEstimatorGains& g) {
-  FullFormDataModelGains f;
-  f.eta = g.eta;
-  f.mu = g.mu;
-  f.epsilon = g.epsilon;
-  f.b0_initial = g.phi_initial;
-  return f;
-}
-
 }  // namespace
 
 MfaDtsmcAxis::MfaDtsmcAxis(const MfaDtsmcGains& gains, double sample_period_s)
