@@ -56,18 +56,18 @@ int line_style(std::size_t index) { return static_cast<int>(index % 8) + 1; }
 constexpr std::array<const char*, 8> kColours{"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
                                               "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
 
-// The columns the figures read; y_ref and y only where the run has a y axis (a single-axis run,
-// thesis ch. 5, has x alone and its contour_error_m is the tracking error x - x_d).
+// A single-axis run (thesis ch. 5) has x alone; its contour_error_m is the tracking error x - x_d.
+bool single_axis(const CsvTable& table) { return !table.has_column("y_m"); }
+
+// The columns the figures read; y_ref and y only where the run has a y axis (npos otherwise).
 struct TraceColumns {
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   std::size_t time, x_ref, y_ref, x, y, error, tau;
   explicit TraceColumns(const CsvTable& t)
-      : time(t.column("time_s")), x_ref(t.column("x_ref_m")),
-        y_ref(t.has_column("x_m") && !t.has_column("y_m") ? 0 : t.column("y_ref_m")), x(t.column("x_m")),
-        y(t.has_column("x_m") && !t.has_column("y_m") ? 0 : t.column("y_m")), error(t.column("contour_error_m")),
+      : time(t.column("time_s")), x_ref(t.column("x_ref_m")), y_ref(single_axis(t) ? kNone : t.column("y_ref_m")),
+        x(t.column("x_m")), y(single_axis(t) ? kNone : t.column("y_m")), error(t.column("contour_error_m")),
         tau(t.column("tau_x_s")) {}
 };
-
-bool single_axis(const CsvTable& table) { return !table.has_column("y_m"); }
 
 // First row of run `i`'s evaluation window (the steady metrics' window, e.g. after the thesis's
 // start-up transient), or 0 when the run has none or the trace ends before it: the figures

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -299,10 +300,9 @@ std::vector<Setting<ResonantStageParameters>> stage004_settings() {
 std::vector<Setting<DeadZoneParameters>> dead_zone_settings(const DeadZoneParameters& nominal, const std::string& unit) {
   using P = DeadZoneParameters;
   const auto number = [](double v) {
-    std::string text = std::to_string(v);
-    text.erase(text.find_last_not_of('0') + 1);
-    if (text.back() == '.') text.pop_back();
-    return text;
+    std::ostringstream text;  // shortest form: 1.2, -1, 0.9
+    text << v;
+    return text.str();
   };
   return {
       {"dead_zone_right_v", "b_r, right break point of the input dead zone (" + unit + "), >= 0; " + number(nominal.right_break_v),
