@@ -35,6 +35,8 @@ Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
   const auto run_sweep = add_sweep_command(app);
   const auto run_plot = add_plot_command(app);
   const auto run_run = add_run_command(app);
+  const auto run_submit = add_submit_command(app);
+  const auto run_watch = add_watch_command(app);
   const auto run_nodes = add_nodes_command(app);
   const auto run_status = add_status_command(app);
   const auto run_cancel = add_cancel_command(app);
@@ -47,6 +49,17 @@ Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
   netmc run --server 127.0.0.1:7300 --clock realtime         # nodes started with --clock realtime
 
 Takes every flag and preset of netmc sim; --quiet prints only the final table.)");
+  app.get_subcommand("submit")->footer(R"(Examples:
+  netmc submit --server 127.0.0.1:7300 --controller adrc+ilccc --iterations 50   # prints the job id
+  netmc watch 7 --server 127.0.0.1:7300 --json job7.json   # from here or any other client
+  netmc status --server 127.0.0.1:7300
+
+Takes every flag and preset of netmc run except --json and --curve (a watcher writes the results).)");
+  app.get_subcommand("watch")->footer(R"(Examples:
+  netmc watch 7 --server 127.0.0.1:7300                   # iterations, then the table
+  netmc watch 7 --server 127.0.0.1:7300 --quiet --json -  # only the result, as JSON
+
+Exit code 1 when the job fails or is cancelled (the message says why).)");
   app.get_subcommand("nodes")->footer(R"(Examples:
   netmc nodes --server 127.0.0.1:7300     # node, axes, plant, clock, last seen, health)");
   app.get_subcommand("cee")->footer(R"(Examples:
@@ -78,6 +91,8 @@ Takes every flag and preset of netmc sim; --quiet prints only the final table.)"
     if (app.got_subcommand("sweep")) return run_sweep();
     if (app.got_subcommand("plot")) return run_plot();
     if (app.got_subcommand("run")) return run_run();
+    if (app.got_subcommand("submit")) return run_submit();
+    if (app.got_subcommand("watch")) return run_watch();
     if (app.got_subcommand("status")) return run_status();
     if (app.got_subcommand("cancel")) return run_cancel();
     if (app.got_subcommand("nodes")) return run_nodes();

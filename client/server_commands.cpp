@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 
 #include "client/study_flags.hpp"
@@ -43,48 +44,49 @@ void add_server_option(CLI::App* command, std::string& server) {
 
 }  // namespace
 
-RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::v1::JobSpec& spec,
-                             std::uint64_t request_id, const std::string& server, bool quiet,
-                             const std::function<void()>& on_iteration) {
-  netmc::v1::Request request;
-  request.set_request_id(request_id);
-  *request.mutable_submit()->mutable_spec() = spec;
-  // The server reads no file a client names: delay traces travel inside the spec.
-  job::inline_delay_traces(*request.mutable_submit()->mutable_spec());
-  client.send(request);
-  const auto accepted = expect_response(client, std::chrono::seconds(30), server);
-  if (!accepted.has_accepted()) throw std::runtime_error("server " + server + ": unexpected answer to submit");
-  const std::uint64_t job_id = accepted.accepted().job_id();
-  const std::string label = spec.name().empty() ? spec.controller().name() : spec.name();
-  if (!quiet) std::cerr << fmt::format("job {} ({}) accepted by {}\n", job_id, label, server);
+namespace {
+
+void print_iteration(const std::string& label, const netmc::v1::IterationUpdate& update) {
+  const auto& m = update.metrics();
+  std::cerr << fmt::format(
+      "  [{}] iteration {}/{}  e_max {:.4f} mm  e_sum {:.3f} mm  tau mean/p99/max {:.3f}/{:.3f}/{:.3f} ms"
+      " (sc {:.3f}, cc {:.3f}, ca {:.3f} ms mean{}){}{}\n",
+      label, m.iteration(), update.total_iterations(), m.e_max_m() * 1e3, m.e_sum_m() * 1e3, m.tau_mean_s() * 1e3,
+      m.tau_p99_s() * 1e3, m.tau_max_s() * 1e3, m.tau_sc_mean_s() * 1e3, m.tau_cc_mean_s() * 1e3,
+      m.tau_ca_mean_s() * 1e3,
+      // Realtime across clocks: the split into sc and ca is good to +- half a round trip.
+      m.clock_uncertainty_s() > 0.0 ? fmt::format(", clocks +-{:.3f} ms", m.clock_uncertainty_s() * 1e3) : "",
+      m.lost_feedback() + m.lost_setpoints() > 0
+          ? fmt::format("  lost feedback {} setpoints {}", m.lost_feedback(), m.lost_setpoints())
+          : "",
+      m.deadline_misses() > 0 ? fmt::format("  deadline misses {} (late feedback {})", m.deadline_misses(),
+                                            m.late_feedback())
+                              : "");
+}
+
+// Reads a job's iterations, then its end, from `client` (the answers to a submit or a watch);
+// `silence_limit`: how long the server may say nothing before the job is given up (none: as long
+// as the connection lasts).
+RunOutcome follow_job(management::ManagementClient& client, std::uint64_t job_id, const std::string& label,
+                      const std::string& server, bool quiet, std::optional<std::chrono::milliseconds> silence_limit,
+                      const std::function<void()>& on_iteration) {
   while (true) {
-    // An iteration takes seconds in realtime and milliseconds in lockstep; nodes may need
-    // discovery time first.
-    const auto response = expect_response(client, std::chrono::seconds(120), server);
-    if (response.has_iteration()) {
+    std::optional<netmc::v1::Response> response;
+    do {
+      response = client.receive(silence_limit.value_or(std::chrono::hours(1)));
+    } while (!response && !silence_limit);
+    if (!response) {
+      throw std::runtime_error("server " + server + ": no answer within " +
+                               std::to_string(silence_limit->count()) + " ms");
+    }
+    if (response->has_error()) throw std::runtime_error("server " + server + ": " + response->error().message());
+    if (response->has_iteration()) {
       if (on_iteration) on_iteration();
-      const auto& m = response.iteration().metrics();
-      if (!quiet) {
-        std::cerr << fmt::format(
-            "  [{}] iteration {}/{}  e_max {:.4f} mm  e_sum {:.3f} mm  tau mean/p99/max {:.3f}/{:.3f}/{:.3f} ms"
-            " (sc {:.3f}, cc {:.3f}, ca {:.3f} ms mean{}){}{}\n",
-            label, m.iteration(), response.iteration().total_iterations(), m.e_max_m() * 1e3,
-            m.e_sum_m() * 1e3, m.tau_mean_s() * 1e3, m.tau_p99_s() * 1e3, m.tau_max_s() * 1e3,
-            m.tau_sc_mean_s() * 1e3, m.tau_cc_mean_s() * 1e3, m.tau_ca_mean_s() * 1e3,
-            // Realtime across clocks: the split into sc and ca is good to +- half a round trip.
-            m.clock_uncertainty_s() > 0.0 ? fmt::format(", clocks +-{:.3f} ms", m.clock_uncertainty_s() * 1e3) : "",
-            m.lost_feedback() + m.lost_setpoints() > 0
-                ? fmt::format("  lost feedback {} setpoints {}", m.lost_feedback(), m.lost_setpoints())
-                : "",
-            m.deadline_misses() > 0
-                ? fmt::format("  deadline misses {} (late feedback {})", m.deadline_misses(), m.late_feedback())
-                : "");
-      }
-    } else if (response.has_finished()) {
-      const auto& finished = response.finished();
+      if (!quiet) print_iteration(label, response->iteration());
+    } else if (response->has_finished()) {
+      const auto& finished = response->finished();
       if (finished.state() != "done") {
-        throw std::runtime_error(fmt::format("job {} ({}) {}: {}", job_id, label, finished.state(),
-                                             finished.error()));
+        throw std::runtime_error(fmt::format("job {} ({}) {}: {}", job_id, label, finished.state(), finished.error()));
       }
       RunOutcome outcome;
       outcome.result = finished.result();
@@ -94,6 +96,38 @@ RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::
       return outcome;
     }
   }
+}
+
+// Sends one job; returns its id once the server has accepted it.
+std::uint64_t submit_job(management::ManagementClient& client, const netmc::v1::JobSpec& spec,
+                         std::uint64_t request_id, const std::string& server, bool keep_after_disconnect) {
+  netmc::v1::Request request;
+  request.set_request_id(request_id);
+  *request.mutable_submit()->mutable_spec() = spec;
+  request.mutable_submit()->set_keep_after_disconnect(keep_after_disconnect);
+  // The server reads no file a client names: delay traces travel inside the spec.
+  job::inline_delay_traces(*request.mutable_submit()->mutable_spec());
+  client.send(request);
+  const auto accepted = expect_response(client, std::chrono::seconds(30), server);
+  if (!accepted.has_accepted()) throw std::runtime_error("server " + server + ": unexpected answer to submit");
+  return accepted.accepted().job_id();
+}
+
+std::string job_label(const netmc::v1::JobSpec& spec) {
+  return spec.name().empty() ? spec.controller().name() : spec.name();
+}
+
+}  // namespace
+
+RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::v1::JobSpec& spec,
+                             std::uint64_t request_id, const std::string& server, bool quiet,
+                             const std::function<void()>& on_iteration) {
+  const std::uint64_t job_id = submit_job(client, spec, request_id, server, false);
+  const std::string label = job_label(spec);
+  if (!quiet) std::cerr << fmt::format("job {} ({}) accepted by {}\n", job_id, label, server);
+  // An iteration takes seconds in realtime and milliseconds in lockstep; nodes may need
+  // discovery time first.
+  return follow_job(client, job_id, label, server, quiet, std::chrono::seconds(120), on_iteration);
 }
 
 std::function<int()> add_run_command(CLI::App& app) {
@@ -120,6 +154,85 @@ std::function<int()> add_run_command(CLI::App& app) {
     if (!flags->study.json_path.empty()) write_output(flags->study.json_path, study_json(outcomes));
     print_study_table(report, plan, outcomes);
     if (flags->study.curve) print_learning_curve(report, outcomes);
+    return 0;
+  };
+}
+
+std::function<int()> add_submit_command(CLI::App& app) {
+  struct Flags {
+    StudyFlags study;
+    std::string server = "127.0.0.1:7300";
+  };
+  auto flags = std::make_shared<Flags>();
+  CLI::App* submit = app.add_subcommand(
+      "submit", "Queue a study's jobs on a netmc-server and return at once: they run on without this client "
+                "(same flags and presets as run); prints one job id per line; follow a job with netmc watch");
+  add_server_option(submit, flags->server);
+  add_study_flags(submit, flags->study);
+  // Results go to whoever watches the job.
+  for (const char* name : {"--json", "--curve"}) submit->remove_option(submit->get_option(name));
+  return [flags]() -> int {
+    const StudyPlan plan = plan_from_flags(flags->study);
+    // Every job is checked before the first is sent: a bad one leaves nothing queued.
+    for (const auto& spec : plan.jobs) job::build_contour_job(spec);
+    management::ManagementClient client(flags->server, kServerConnectTimeout);
+    std::uint64_t request_id = 1;
+    for (const auto& spec : plan.jobs) {
+      const std::uint64_t job_id = submit_job(client, spec, request_id++, flags->server, true);
+      fmt::print("{}\n", job_id);
+      std::fflush(stdout);
+      if (!verbosity().quiet) {
+        std::cerr << fmt::format("job {} ({}) queued on {}; follow it with: netmc watch {}\n", job_id,
+                                 job_label(spec), flags->server, job_id);
+      }
+    }
+    return 0;
+  };
+}
+
+std::function<int()> add_watch_command(CLI::App& app) {
+  struct Flags {
+    std::string server = "127.0.0.1:7300";
+    std::uint64_t job = 0;
+    std::string json_path;
+  };
+  auto flags = std::make_shared<Flags>();
+  CLI::App* watch = app.add_subcommand(
+      "watch", "Follow a job of a netmc-server from any connection: its iterations (the earlier ones first) "
+               "until it ends, then its table; the job runs on if this client stops");
+  watch->add_option("JOB", flags->job, "The job's id (as netmc submit, run or status print it)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  add_server_option(watch, flags->server);
+  watch->add_option("--json", flags->json_path,
+                    "Write the job's result as JSON (as netmc run --json writes it; - for standard output)");
+  return [flags]() -> int {
+    if (!flags->json_path.empty()) check_output_path(flags->json_path, "--json");
+    std::ostream& report = is_standard_output(flags->json_path) ? std::cerr : std::cout;
+    management::ManagementClient client(flags->server, kServerConnectTimeout);
+    netmc::v1::Request request;
+    request.set_request_id(1);
+    request.mutable_watch()->set_job_id(flags->job);
+    client.send(request);
+    const auto first = expect_response(client, std::chrono::seconds(10), flags->server);
+    if (!first.has_status() || first.status().jobs_size() != 1) {
+      throw std::runtime_error("server " + flags->server + ": unexpected answer to watch");
+    }
+    const auto& status = first.status().jobs(0);
+    if (!verbosity().quiet) {
+      std::cerr << fmt::format("job {} ({}) on {}: {}, {}/{} iterations{}\n", flags->job, status.label(),
+                               flags->server, status.state(), status.iterations_done(), status.iterations_total(),
+                               status.waiting_for().empty() ? "" : ", waits for " + status.waiting_for());
+    }
+    // A queued job may wait behind long ones: the watch lasts as long as the connection.
+    std::vector<RunOutcome> outcomes;
+    outcomes.push_back(
+        follow_job(client, flags->job, status.label(), flags->server, verbosity().quiet, std::nullopt, {}));
+    if (!flags->json_path.empty()) write_output(flags->json_path, study_json(outcomes));
+    StudyPlan plan;
+    plan.title = fmt::format("job {} on {}", flags->job, flags->server);
+    plan.steady_metrics = outcomes.front().result.evaluation_start_s() > 0.0;
+    print_study_table(report, plan, outcomes);
     return 0;
   };
 }

@@ -1,5 +1,5 @@
 #pragma once
-// `netmc run` (a study on a running netmc-server) and `netmc nodes` (its discovered axis nodes).
+// The commands that talk to a running netmc-server: run, submit, watch, nodes, status, cancel.
 
 #include <CLI/CLI.hpp>
 
@@ -14,6 +14,10 @@
 namespace netmc::cli {
 
 std::function<int()> add_run_command(CLI::App& app);
+// netmc submit: the jobs of a study queued, kept when this client leaves; prints their ids.
+std::function<int()> add_submit_command(CLI::App& app);
+// netmc watch JOB: a job's iterations and result, from any connection.
+std::function<int()> add_watch_command(CLI::App& app);
 std::function<int()> add_nodes_command(CLI::App& app);
 // netmc status [JOB]: the server's jobs (state, iterations, what a queued one waits behind).
 std::function<int()> add_status_command(CLI::App& app);

@@ -113,6 +113,19 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
       }
       break;
     }
+    case netmc::v1::Request::kWatch: {
+      std::lock_guard lock(mutex_);
+      const auto it = jobs_.find(request.watch().job_id());
+      if (it == jobs_.end()) {
+        session->send(error_response(request.request_id(),
+                                     "watch: no job " + std::to_string(request.watch().job_id()) +
+                                         " (never submitted, or ended more than " +
+                                         std::to_string(options_.job_history) + " jobs ago)"));
+        return;
+      }
+      start_watch(*it->second, session, request.request_id());
+      return;
+    }
     case netmc::v1::Request::kNodes: {
       const auto now = std::chrono::steady_clock::now();
       auto& reply = *response.mutable_nodes();
@@ -145,7 +158,7 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
       break;
     }
     case netmc::v1::Request::KIND_NOT_SET:
-      session->send(error_response(request.request_id(), "request: empty (expected submit, cancel, status or nodes)"));
+      session->send(error_response(request.request_id(), "request: empty (expected submit, cancel, status, watch or nodes)"));
       return;
   }
   session->send(response);
@@ -216,6 +229,11 @@ void JobService::tend_jobs() {
     spdlog::info("job {} dropped from the queue: its client disconnected", job.id);
     job.status.set_state("cancelled");
     job.status.set_error("its client disconnected");
+    netmc::v1::JobFinished finished;
+    finished.set_job_id(job.id);
+    finished.set_state("cancelled");
+    finished.set_error(job.status.error());
+    end_watches(job, finished);
     ended_.push_back(job.id);
     it = queue_.erase(it);
   }
@@ -235,6 +253,68 @@ void JobService::tend_jobs() {
 void JobService::reply(Job& job, netmc::v1::Response response) {
   response.set_request_id(job.request_id);
   if (auto session = job.session.lock()) session->send(response);
+}
+
+bool JobService::start_watch(Job& job, const std::shared_ptr<management::Session>& session,
+                             std::uint64_t request_id) {
+  std::erase_if(job.watchers, [](const Watcher& watcher) {
+    const auto other = watcher.session.lock();
+    return !other || !other->open();
+  });
+  if (job.watchers.size() >= options_.max_watchers_per_job) {
+    session->send(error_response(request_id, "watch: job " + std::to_string(job.id) + " has " +
+                                                 std::to_string(job.watchers.size()) +
+                                                 " watchers already (the server's limit)"));
+    return false;
+  }
+  netmc::v1::Response response;
+  response.set_request_id(request_id);
+  *response.mutable_status()->add_jobs() = job.status;
+  session->send(response);
+  const auto send_iteration = [&](const netmc::v1::IterationMetrics& metrics) {
+    netmc::v1::Response update;
+    update.set_request_id(request_id);
+    update.mutable_iteration()->set_job_id(job.id);
+    update.mutable_iteration()->set_total_iterations(job.spec.iterations());
+    *update.mutable_iteration()->mutable_metrics() = metrics;
+    session->send(update);
+  };
+  const std::string& state = job.status.state();
+  if (state == "queued" || state == "running") {
+    for (const auto& metrics : job.iterations) send_iteration(metrics);
+    job.watchers.push_back({session, request_id});
+    session->hold();  // not idle while it waits for the job
+    return true;
+  }
+  // Ended. A job dropped from the queue never ran: its end is its status.
+  netmc::v1::JobFinished finished;
+  if (job.finished) {
+    finished = *job.finished;
+  } else {
+    finished.set_job_id(job.id);
+    finished.set_state(state);
+    finished.set_error(job.status.error());
+  }
+  for (const auto& metrics : finished.result().iterations()) send_iteration(metrics);
+  netmc::v1::Response end;
+  end.set_request_id(request_id);
+  *end.mutable_finished() = std::move(finished);
+  session->send(end);
+  return true;
+}
+
+void JobService::end_watches(Job& job, const netmc::v1::JobFinished& finished) {
+  for (const auto& watcher : job.watchers) {
+    const auto session = watcher.session.lock();
+    if (!session) continue;
+    netmc::v1::Response end;
+    end.set_request_id(watcher.request_id);
+    *end.mutable_finished() = finished;
+    session->send(end);
+    session->release();
+  }
+  job.watchers.clear();
+  job.iterations.clear();  // the end carries them
 }
 
 void JobService::schedule() {
@@ -421,15 +501,22 @@ void JobService::run(Job& job) {
     const auto on_iteration = [&](const sim::IterationRecord& record) {
       const auto metrics = job::to_proto(record.metrics);
       *done.mutable_result()->add_iterations() = metrics;
-      {
-        std::lock_guard lock(mutex_);
-        job.status.set_iterations_done(static_cast<std::uint32_t>(record.metrics.iteration));
-      }
       netmc::v1::Response update;
       auto& iteration = *update.mutable_iteration();
       iteration.set_job_id(job.id);
       iteration.set_total_iterations(job.spec.iterations());
       *iteration.mutable_metrics() = metrics;
+      {
+        std::lock_guard lock(mutex_);
+        job.status.set_iterations_done(static_cast<std::uint32_t>(record.metrics.iteration));
+        job.iterations.push_back(metrics);
+        for (const auto& watcher : job.watchers) {
+          if (const auto session = watcher.session.lock()) {
+            update.set_request_id(watcher.request_id);
+            session->send(update);
+          }
+        }
+      }
       reply(job, update);
       spdlog::info("job {} iteration {}/{}: e_max {:.4f} mm, e_sum {:.3f} mm{}", job.id, record.metrics.iteration,
                    job.spec.iterations(), record.metrics.e_max_m * 1e3, record.metrics.e_sum_m * 1e3,
@@ -473,8 +560,10 @@ void JobService::run(Job& job) {
     if (state == "cancelled") done.set_error(job.cancel_reason);
     job.status.set_state(state);
     job.status.set_error(done.error());
+    done.set_state(state);
+    job.finished = done;
+    end_watches(job, done);
   }
-  done.set_state(state);
   const auto level = state == "failed" ? spdlog::level::err : spdlog::level::info;
   spdlog::log(level, "job {} {}{}", job.id, state, done.error().empty() ? "" : ": " + done.error());
   reply(job, finished);

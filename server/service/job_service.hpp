@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -32,6 +33,7 @@ struct JobServiceOptions {
   std::size_t max_running_jobs = 32;
   std::size_t max_queued_jobs = 256;                  // waiting for validation or for axes
   std::size_t job_history = 256;                      // ended jobs kept for status; older ones forgotten
+  std::size_t max_watchers_per_job = 16;              // netmc watch connections following one job
 };
 
 class JobService {
@@ -50,6 +52,11 @@ class JobService {
               bool admin = false);
 
  private:
+  // A connection following a job (netmc watch); the job keeps it from idling out till it ends.
+  struct Watcher {
+    std::weak_ptr<management::Session> session;
+    std::uint64_t request_id = 0;
+  };
   struct Job {
     std::uint64_t id = 0;
     netmc::v1::JobSpec spec;
@@ -60,6 +67,11 @@ class JobService {
     std::string cancel_reason;  // set with `cancel`, under the service's mutex
     std::vector<std::string> axes;
     bool keep_after_disconnect = false;
+    // Under the service's mutex: the iterations reported so far (until it ends), its end (once
+    // it has ended; a job dropped from the queue has none) and who follows it.
+    std::vector<netmc::v1::IterationMetrics> iterations;
+    std::optional<netmc::v1::JobFinished> finished;
+    std::vector<Watcher> watchers;
   };
   struct Submission {
     std::shared_ptr<management::Session> session;
@@ -79,6 +91,11 @@ class JobService {
   void run(Job& job);
   void finish(const std::shared_ptr<Job>& job);
   void reply(Job& job, netmc::v1::Response response);
+  // Under mutex_: a new watcher of `job` gets its status and the iterations so far (and its end,
+  // if it has ended); returns false (and answers why) if the job has too many watchers already.
+  bool start_watch(Job& job, const std::shared_ptr<management::Session>& session, std::uint64_t request_id);
+  // Under mutex_: `job` has ended with `finished`: each watcher gets it and is let go.
+  void end_watches(Job& job, const netmc::v1::JobFinished& finished);
 
   // The nodes hosting the job's axes, checked against its clock and plant, matched by DDS.
   std::vector<NodeRecord> find_nodes(const Job& job, const JobChannels& channels);

@@ -174,6 +174,56 @@ void disconnect_cancels() {
   verdict(job_id != 0 && state == "cancelled", "client disconnects mid-job", fmt::format("job {} {}", job_id, state));
 }
 
+// One connection asks to watch a job again and again: the server follows it for a bounded
+// number of watchers (16), refuses the rest, and ends every watch it took when the job ends.
+void many_watches() {
+  ManagementClient owner(g_server, 5s);
+  const auto accepted = submit(owner, long_job());
+  if (!accepted || !accepted->has_accepted()) {
+    verdict(false, "watch flood", "the job was not accepted: " + error_of(accepted));
+    return;
+  }
+  const std::uint64_t job_id = accepted->accepted().job_id();
+  ManagementClient watcher(g_server, 5s);
+  constexpr int kWatches = 40;
+  for (int i = 0; i < kWatches; ++i) {
+    netmc::v1::Request watch;
+    watch.set_request_id(100 + static_cast<std::uint64_t>(i));
+    watch.mutable_watch()->set_job_id(job_id);
+    watcher.send(watch);
+  }
+  netmc::v1::Request unknown;
+  unknown.set_request_id(99);
+  unknown.mutable_watch()->set_job_id(std::numeric_limits<std::uint64_t>::max());
+  watcher.send(unknown);
+  // The owner cancels; every watch that was taken then ends, cancelled.
+  netmc::v1::Request cancel;
+  cancel.set_request_id(2);
+  cancel.mutable_cancel()->set_job_id(job_id);
+  owner.send(cancel);
+  int taken = 0, refused = 0, ended = 0;
+  std::string refusal, unknown_answer;
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while ((taken == 0 || ended < taken || unknown_answer.empty()) && std::chrono::steady_clock::now() < deadline) {
+    const auto response = watcher.receive(1s);
+    if (!response) continue;
+    if (response->request_id() == 99) {
+      unknown_answer = error_of(response);
+    } else if (response->has_status()) {
+      ++taken;
+    } else if (response->has_error()) {
+      ++refused;
+      refusal = response->error().message();
+    } else if (response->has_finished() && response->finished().state() == "cancelled") {
+      ++ended;
+    }
+  }
+  verdict(taken == 16 && refused == kWatches - 16 && ended == taken && refusal.find("watchers already") != std::string::npos,
+          "watch flood", fmt::format("{} watches of job {} on one connection: {} taken, {} refused ({}), {} ended with the job",
+                                     kWatches, job_id, taken, refused, refusal, ended));
+  verdict(unknown_answer.find("watch: no job") != std::string::npos, "watch of job 2^64-1", unknown_answer);
+}
+
 void connection_cap(int max_connections) {
   std::vector<std::unique_ptr<ManagementClient>> held;
   for (int i = 0; i < max_connections; ++i) held.push_back(std::make_unique<ManagementClient>(g_server, 5s));
@@ -232,14 +282,15 @@ int main(int argc, char** argv) {
   int max_connections = 8;
   app.add_option("--server", g_server, "HOST:PORT")->required();
   app.add_option("--max-connections", max_connections, "The server's --max-connections");
-  app.add_option("cases", cases, "files, values, cancel, disconnect, connections, token (default: all but token)");
+  app.add_option("cases", cases, "files, values, cancel, disconnect, watch, connections, token (default: all but token)");
   CLI11_PARSE(app, argc, argv);
-  if (cases.empty()) cases = {"files", "values", "cancel", "disconnect", "connections"};
+  if (cases.empty()) cases = {"files", "values", "cancel", "disconnect", "watch", "connections"};
   const std::map<std::string, std::function<void()>> all{
       {"files", server_files},
       {"values", absurd_values},
       {"cancel", cancel_by_another_connection},
       {"disconnect", disconnect_cancels},
+      {"watch", many_watches},
       {"connections", [&] { connection_cap(max_connections); }},
       {"token", without_token}};
   for (const auto& name : cases) {

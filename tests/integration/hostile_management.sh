@@ -19,7 +19,7 @@ start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain 
 port=$(server_port 127.0.0.1)
 
 "$build/tests/integration/netmc_hostile_client" --server "127.0.0.1:$port" --max-connections 8 \
-  files values cancel disconnect connections token
+  files values cancel disconnect watch connections token
 
 grep -q "cancelled: its client disconnected" "$tmp/server.log" ||
   { echo "FAIL: the server's log does not say why the job of the vanished client ended"; exit 1; }

@@ -2,7 +2,9 @@
 # What an operator does with jobs, on loopback in lockstep, with a client token and an admin
 # token: Ctrl-C on `netmc run` cancels its job (`netmc status` shows it cancelled) and the job
 # queued behind it, which `netmc status` showed waiting for it, starts at once; `netmc cancel`
-# of another connection's job is refused with the client token and done with the admin token.
+# of another connection's job is refused with the client token and done with the admin token;
+# a job from `netmc submit` runs on without its client, and `netmc watch` follows it from other
+# connections, joining mid-run or after its end, with the result `netmc sim` gives.
 # Usage: operator_jobs.sh BUILD_DIR
 set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
@@ -83,5 +85,30 @@ wait "$third_pid" || third_rc=$?
 [ "$third_rc" -ne 0 ] && grep -q "job 3 .* cancelled: cancelled by an admin" "$tmp/third.txt" ||
   { echo "FAIL: the cancelled job's client did not say so"; cat "$tmp/third.txt"; exit 1; }
 echo "netmc cancel 3 with the admin token: cancelled; its client: $(tail -n 1 "$tmp/third.txt")"
+# netmc submit, then netmc watch: a job that outlives its client, followed from other connections.
+"$netmc" submit "${server[@]}" --quiet --controller adrc+ilccc --iterations 30 --duration 4s >"$tmp/submitted.txt"
+job=$(cat "$tmp/submitted.txt")
+[ "$job" = 4 ] || { echo "FAIL: netmc submit printed '$job', expected the job id 4"; exit 1; }
+wait_state 4 running 20
+until "$netmc" status 4 "${server[@]}" | grep -q "running  *\([5-9]\|[12][0-9]\)/30"; do sleep 0.05; done
+# Joins mid-run: every iteration, the earlier ones first, in order, then the table.
+"$netmc" watch 4 "${server[@]}" --json "$tmp/watch-live.json" >"$tmp/watch-live.txt" 2>&1 ||
+  { echo "FAIL: netmc watch of a running job"; cat "$tmp/watch-live.txt"; exit 1; }
+head -n 3 "$tmp/watch-live.txt"
+seen=$(sed -n 's/.*\[adrc+ilccc\] iteration \([0-9]*\)\/30 .*/\1/p' "$tmp/watch-live.txt" | tr '\n' ' ')
+[ "$seen" = "$(seq -s ' ' 1 30) " ] || { echo "FAIL: netmc watch showed iterations '$seen', expected 1..30 in order"; exit 1; }
+grep -q "^adrc+ilccc " "$tmp/watch-live.txt" || { echo "FAIL: netmc watch printed no table"; exit 1; }
+# After the end: the same result at once, and the same as the in-process run.
+"$netmc" watch 4 "${server[@]}" --quiet --json "$tmp/watch-ended.json" >/dev/null
+cmp -s "$tmp/watch-live.json" "$tmp/watch-ended.json" ||
+  { echo "FAIL: watching the ended job gave another result"; exit 1; }
+"$netmc" sim --quiet --controller adrc+ilccc --iterations 30 --duration 4s --json "$tmp/sim-30.json" >/dev/null
+same_json "$tmp/sim-30.json" "$tmp/watch-live.json" "netmc submit + watch (job 4, 30 iterations)"
+unknown=0
+"$netmc" watch 99 "${server[@]}" >"$tmp/watch-unknown.txt" 2>&1 || unknown=$?
+[ "$unknown" -ne 0 ] && grep -q "watch: no job 99" "$tmp/watch-unknown.txt" ||
+  { echo "FAIL: netmc watch of an unknown job"; cat "$tmp/watch-unknown.txt"; exit 1; }
+echo "netmc watch 99: exit $unknown, $(cat "$tmp/watch-unknown.txt")"
+
 echo "server log:"
 sed 's/^/  /' "$tmp/server.log"
