@@ -305,7 +305,10 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
   if (it == job_axes.end()) throw std::invalid_argument("axis " + begin.axis() + " is not an axis of the job");
   const auto index = static_cast<std::size_t>(it - job_axes.begin());
   JobAxis axis;
-  axis.endpoint = std::make_unique<sim::AxisEndpoint>(job.axes.at(index)->clone(), job, index, config_.limits);
+  const auto limits = config_.limits.find(begin.axis());
+  axis.endpoint = std::make_unique<sim::AxisEndpoint>(job.axes.at(index)->clone(), job, index,
+                                                      limits == config_.limits.end() ? sim::AxisLimits{}
+                                                                                     : limits->second);
   axis.job_id = begin.job_id();
   axis.cycles = job.cycles();
   axis.sample_period_s = job.sample_period_s;

@@ -9,10 +9,12 @@
 #include <iostream>
 #include <unistd.h>
 
+#include "server/axis/axis_limit_flags.hpp"
 #include "server/axis/lockstep_axis_node.hpp"
 #include "server/axis/realtime_axis_node.hpp"
 #include "server/dds/dds_options_cli.hpp"
 #include "server/job/job_builder.hpp"
+#include "plant/plant_catalog.hpp"
 #include "server/log/process_log.hpp"
 #include "server/realtime/realtime_options_cli.hpp"
 
@@ -55,7 +57,9 @@ int main(int argc, char** argv) {
                  "Axes this node hosts, comma-separated names (each unique on the DDS domain; a "
                  "job's axes default to x,y)")
       ->envname("NETMC_AXES");
-  app.add_option("--plant", config.plant, "Plant model: seed001, ballscrew, linmotor, stage004")->envname("NETMC_PLANT");
+  std::string plants;
+  for (const auto& name : netmc::plant::plant_names()) plants += (plants.empty() ? "" : ", ") + name;
+  app.add_option("--plant", config.plant, "Plant model: " + plants)->envname("NETMC_PLANT");
   int watchdog_ms = 50;
   app.add_option("--clock", clock,
                  "lockstep (virtual time, deterministic) or realtime (wall clock)")
@@ -64,15 +68,19 @@ int main(int argc, char** argv) {
   app.add_option("--watchdog", watchdog_ms,
                  "Realtime: milliseconds without a setpoint before the axis holds (command 0)")
       ->check(CLI::Range(1, 60000));
-  // The operator's limits (SI units; each applies to every axis of the node).
-  app.add_option("--command-limit", config.limits.command,
-                 "Largest |command| the drive takes, in the plant's input unit; a larger one trips the axis");
-  std::string position_window;
-  app.add_option("--position-window", position_window,
-                 "Travel MIN:MAX in metres; leaving it trips the axis (e.g. -0.05:0.25)");
-  app.add_option("--velocity-limit", config.limits.velocity_m_s, "Largest |velocity| in m/s; beyond it trips the axis");
-  app.add_option("--slew-limit", config.limits.slew_per_s,
-                 "Largest change of the applied command per second (units/s): steps are ramped, not tripped");
+  // The operator's limits (SI units): a value for every axis of the node, or AXIS=VALUE entries.
+  netmc::axis::AxisLimitFlags limit_flags;
+  app.add_option("--command-limit", limit_flags.command,
+                 "Largest |command| the drive takes, in the plant's input unit; a larger one trips the axis "
+                 "(U for every axis, or AXIS=U entries: 8,stage1.y=5)");
+  app.add_option("--position-window", limit_flags.position_window,
+                 "Travel MIN:MAX in metres; leaving it trips the axis (e.g. -0.05:0.25, or per axis: "
+                 "x=-0.05:0.25,y=0:0.45)");
+  app.add_option("--velocity-limit", limit_flags.velocity,
+                 "Largest |velocity| in m/s; beyond it trips the axis (V, or AXIS=V entries)");
+  app.add_option("--slew-limit", limit_flags.slew,
+                 "Largest change of the applied command per second (units/s): steps are ramped, not tripped "
+                 "(R, or AXIS=R entries)");
   netmc::dds::add_time_base_option(app, config.time_base);
   netmc::dds::add_dds_options(app, dds);
   netmc::realtime::RealtimeScheduling scheduling;
@@ -88,21 +96,7 @@ int main(int argc, char** argv) {
   }
   try {
     config.axes = netmc::axis::parse_axis_list(axes);
-    if (!position_window.empty()) {
-      const auto colon = position_window.find(':', 1);  // MIN may be negative
-      std::size_t used_min = 0, used_max = 0;
-      try {
-        if (colon == std::string::npos) throw std::invalid_argument("no colon");
-        config.limits.position_min_m = std::stod(position_window.substr(0, colon), &used_min);
-        config.limits.position_max_m = std::stod(position_window.substr(colon + 1), &used_max);
-      } catch (const std::exception&) {
-        used_min = 0;
-      }
-      if (used_min != colon || used_max != position_window.size() - colon - 1) {
-        throw std::invalid_argument("--position-window: expected MIN:MAX in metres, got '" + position_window + "'");
-      }
-    }
-    config.limits.validate();
+    config.limits = netmc::axis::parse_axis_limits(limit_flags, config.axes);
     netmc::job::check_name(config.node, "--node");
     netmc::log::init("netmc-axis " + config.node);
     config.clock = clock;
@@ -117,7 +111,7 @@ int main(int argc, char** argv) {
     std::signal(SIGTERM, on_signal);
     std::signal(SIGUSR1, on_reset);
     spdlog::info("netmc {}, axes {}, plant {}, limits {}, clock {} ({}), DDS domain {} ({}), participant {}, {}",
-                 NETMC_VERSION, axes, config.plant, config.limits.describe(), clock,
+                 NETMC_VERSION, axes, config.plant, netmc::axis::describe_axis_limits(config.limits, config.axes), clock,
                  netmc::dds::time_base_name(config.time_base), dds.domain_id, context.describe_transport(),
                  context.identity(), scheduling_outcome.describe());
     if (clock == "realtime") {

@@ -1,0 +1,101 @@
+#include "server/axis/axis_limit_flags.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+
+namespace netmc::axis {
+namespace {
+
+// True when the whole of `text` is a finite number (then in `value`).
+bool parse_finite(const std::string& text, double& value) {
+  // Decimal only: stod would also take hexadecimal, "inf" and "nan".
+  if (text.empty() || text.size() > 64 ||
+      text.find_first_not_of("0123456789+-.eE") != std::string::npos) {
+    return false;
+  }
+  std::size_t used = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return false;
+  }
+  return used == text.size() && std::isfinite(value);
+}
+
+// Applies `set(limits, value text)` to the axes each entry of `text` names; `set` returns false
+// for a value not of the flag's form.
+void apply_flag(const std::string& text, const std::string& flag, const std::string& form,
+                const std::vector<std::string>& axes, std::map<std::string, sim::AxisLimits>& limits,
+                const std::function<bool(sim::AxisLimits&, const std::string&)>& set) {
+  if (text.empty()) return;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string entry = text.substr(start, comma - start);
+    const std::size_t equals = entry.find('=');
+    const std::string axis = equals == std::string::npos ? "" : entry.substr(0, equals);
+    const std::string value = equals == std::string::npos ? entry : entry.substr(equals + 1);
+    const std::string where = axis.empty() ? "" : " (axis " + axis.substr(0, 64) + ")";
+    if (equals != std::string::npos && !axis.empty() && std::find(axes.begin(), axes.end(), axis) == axes.end()) {
+      throw std::invalid_argument(flag + ": '" + axis.substr(0, 64) + "' is not an axis of this node (--axes)");
+    }
+    const std::vector<std::string> targets = axis.empty() ? axes : std::vector<std::string>{axis};
+    for (const auto& target : targets) {
+      if (equals == 0 || !set(limits[target], value)) {
+        throw std::invalid_argument(flag + where + ": expected " + form + " or AXIS=" + form +
+                                    " entries separated by commas, got '" + entry.substr(0, 80) + "'");
+      }
+    }
+    start = comma + 1;
+  }
+}
+
+}  // namespace
+
+std::map<std::string, sim::AxisLimits> parse_axis_limits(const AxisLimitFlags& flags,
+                                                         const std::vector<std::string>& axes) {
+  std::map<std::string, sim::AxisLimits> limits;
+  for (const auto& axis : axes) limits[axis] = {};
+  const auto positive = [](double sim::AxisLimits::*field) {
+    return [field](sim::AxisLimits& target, const std::string& text) {
+      double value = 0.0;
+      if (!parse_finite(text, value) || !(value > 0.0)) return false;
+      target.*field = value;
+      return true;
+    };
+  };
+  apply_flag(flags.command, "--command-limit", "a positive number U", axes, limits,
+             positive(&sim::AxisLimits::command));
+  apply_flag(flags.velocity, "--velocity-limit", "a positive number V (m/s)", axes, limits,
+             positive(&sim::AxisLimits::velocity_m_s));
+  apply_flag(flags.slew, "--slew-limit", "a positive number R (units/s)", axes, limits,
+             positive(&sim::AxisLimits::slew_per_s));
+  apply_flag(flags.position_window, "--position-window", "MIN:MAX (m, MIN < MAX)", axes, limits,
+             [](sim::AxisLimits& target, const std::string& text) {
+               const std::size_t colon = text.find(':', 1);  // MIN may be negative
+               double min = 0.0, max = 0.0;
+               if (colon == std::string::npos || !parse_finite(text.substr(0, colon), min) ||
+                   !parse_finite(text.substr(colon + 1), max) || !(min < max)) {
+                 return false;
+               }
+               target.position_min_m = min;
+               target.position_max_m = max;
+               return true;
+             });
+  for (const auto& [axis, axis_limits] : limits) axis_limits.validate();
+  return limits;
+}
+
+std::string describe_axis_limits(const std::map<std::string, sim::AxisLimits>& limits,
+                                 const std::vector<std::string>& axes) {
+  std::string text;
+  for (const auto& axis : axes) {
+    const auto it = limits.find(axis);
+    text += (text.empty() ? "" : "; ") + axis + ": " + (it == limits.end() ? "none" : it->second.describe());
+  }
+  return text;
+}
+
+}  // namespace netmc::axis
