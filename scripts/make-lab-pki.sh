@@ -3,7 +3,7 @@
 # participant and the signed governance and permissions that say who may write what.
 #
 #   scripts/make-lab-pki.sh DIR --server NAME [--server NAME ...] --node NAME:AXIS[,AXIS...] [...]
-#                               [--reader NAME ...]
+#                               [--reader NAME ...] [--management HOST ...]
 #
 # Every participant gets DIR/NAME.pem (certificate) and DIR/NAME.key (its private key, 0600);
 # all share DIR/ca.pem, DIR/governance.p7s and DIR/permissions.p7s. Start each process with
@@ -17,11 +17,14 @@
 # Governance: no unauthenticated participant joins; discovery, liveliness and every topic's
 # data are encrypted (AES-GCM) and access-controlled. Topics are named one by one (a * in a
 # topic name does not cross a /).
+# --management HOST (repeatable): DIR/management.pem and .key, a TLS server certificate for the
+# management endpoint (netmc-server --tls-cert/--tls-key) naming each HOST (an IP address or a
+# DNS name) as the clients dial it; clients trust DIR/ca.pem (NETMC_TLS_CA).
 # Needs openssl. Keys are ECDSA P-256; certificates and permissions hold for 10 years.
 set -euo pipefail
 
 usage() {
-  echo "usage: $0 DIR --server NAME [...] --node NAME:AXIS[,AXIS...] [...] [--reader NAME ...]" >&2
+  echo "usage: $0 DIR --server NAME [...] --node NAME:AXIS[,AXIS...] [...] [--reader NAME ...] [--management HOST ...]" >&2
   exit 2
 }
 [ $# -ge 1 ] || usage
@@ -30,12 +33,14 @@ shift
 servers=()
 nodes=()
 readers=()
+management=()
 while [ $# -gt 0 ]; do
   [ $# -ge 2 ] || usage
   case "$1" in
     --server) servers+=("$2") ;;
     --node) nodes+=("$2") ;;
     --reader) readers+=("$2") ;;
+    --management) management+=("$2") ;;
     *) usage ;;
   esac
   shift 2
@@ -43,12 +48,35 @@ done
 [ ${#servers[@]} -gt 0 ] || usage
 name_ok() { [[ "$1" =~ ^[A-Za-z0-9_.-]{1,64}$ ]] || { echo "$0: bad name '$1' (1-64 of A-Z a-z 0-9 _ . -)" >&2; exit 2; }; }
 
+# The hosts of the management certificate, checked before anything is written.
+alt=""
+for host in "${management[@]}"; do
+  if [[ "$host" =~ ^[0-9]{1,3}(\.[0-9]{1,3}){3}$ || "$host" =~ ^[0-9A-Fa-f:]*:[0-9A-Fa-f:]*$ ]]; then
+    alt+="${alt:+,}IP:$host"
+  elif [[ "$host" =~ ^[A-Za-z0-9]([A-Za-z0-9.-]{0,252})$ ]]; then
+    alt+="${alt:+,}DNS:$host"
+  else
+    echo "$0: --management: bad host '$host' (an IP address or a DNS name)" >&2
+    exit 2
+  fi
+done
+
 mkdir -p "$dir"
 umask 077
 cd "$dir"
 
 openssl ecparam -name prime256v1 -genkey -noout -out ca.key
 openssl req -x509 -new -key ca.key -sha256 -days 3650 -subj "/CN=netmc lab CA" -out ca.pem 2>/dev/null
+
+if [ -n "$alt" ]; then
+  # The management endpoint's TLS certificate: each host as the clients dial it.
+  openssl ecparam -name prime256v1 -genkey -noout -out management.key
+  openssl req -new -key management.key -sha256 -subj "/CN=netmc management" -out management.csr 2>/dev/null
+  printf 'basicConstraints=critical,CA:FALSE\nsubjectAltName=%s\nextendedKeyUsage=serverAuth\n' "$alt" >management.ext
+  openssl x509 -req -in management.csr -CA ca.pem -CAkey ca.key -CAcreateserial -sha256 -days 3650 \
+    -extfile management.ext -out management.pem 2>/dev/null
+  rm -f management.csr management.ext
+fi
 
 issue() {  # issue NAME: NAME.key and NAME.pem signed by the CA
   name_ok "$1"
@@ -163,4 +191,4 @@ for doc in governance permissions; do
   openssl smime -sign -in "$doc.xml" -text -out "$doc.p7s" -signer ca.pem -inkey ca.key
 done
 chmod 644 ca.pem ./*.pem governance.* permissions.*
-echo "$dir: CA, ${#servers[@]} server(s), ${#nodes[@]} node(s), ${#readers[@]} reader(s); governance.p7s, permissions.p7s"
+echo "$dir: CA, ${#servers[@]} server(s), ${#nodes[@]} node(s), ${#readers[@]} reader(s); governance.p7s, permissions.p7s${alt:+; management.pem for $alt}"

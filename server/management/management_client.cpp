@@ -2,6 +2,7 @@
 
 #include "server/management/access_token.hpp"
 #include "server/management/host_port.hpp"
+#include "server/management/tls_settings.hpp"
 
 #include <array>
 #include <cctype>
@@ -36,11 +37,26 @@ bool run_with_timeout(asio::io_context& io, std::chrono::milliseconds timeout, C
   return timed_out;
 }
 
+using TlsStream = asio::ssl::stream<tcp::socket>;
+
+std::shared_ptr<asio::ssl::context> client_tls(const std::optional<std::string>& ca_file) {
+  return ca_file ? make_client_tls(*ca_file) : nullptr;
+}
+
 }  // namespace
+
+tcp::socket& ManagementClient::socket() {
+  if (auto* plain = std::get_if<tcp::socket>(&stream_)) return *plain;
+  return std::get<TlsStream>(stream_).next_layer();
+}
 
 ManagementClient::ManagementClient(const std::string& host_port,
                                    std::chrono::milliseconds connect_timeout)
-    : name_(host_port), socket_(io_) {
+    : name_(host_port),
+      tls_ca_(client_tls_ca_from_environment()),
+      tls_(client_tls(tls_ca_)),
+      stream_(tls_ ? decltype(stream_)(std::in_place_index<1>, io_, *tls_)
+                   : decltype(stream_)(std::in_place_index<0>, io_)) {
   const HostPort target = parse_host_port(host_port, "--server");
   if (const auto token = client_token_from_environment()) token_ = token->value();
 
@@ -58,17 +74,38 @@ ManagementClient::ManagementClient(const std::string& host_port,
   }
   if (error) throw std::runtime_error("server " + name_ + ": cannot resolve '" + target.host + "': " + describe(error));
 
-  asio::async_connect(socket_, endpoints,
+  asio::async_connect(socket(), endpoints,
                       [&](const boost::system::error_code& result, const tcp::endpoint&) { error = result; });
   if (run_with_timeout(io_, connect_timeout, [&] {
         boost::system::error_code ignored;
-        socket_.close(ignored);
+        socket().close(ignored);
       })) {
     throw std::runtime_error("server " + name_ + ": no connection within " +
                              std::to_string(connect_timeout.count()) + " ms");
   }
   if (error) throw std::runtime_error("server " + name_ + ": " + describe(error));
-  socket_.set_option(tcp::no_delay(true), error);  // small frames: do not wait for Nagle
+  socket().set_option(tcp::no_delay(true), error);  // small frames: do not wait for Nagle
+  if (!tls_) return;
+  auto& stream = std::get<TlsStream>(stream_);
+  // The certificate must name the host dialled (an IP address or a DNS name).
+  stream.set_verify_callback(asio::ssl::host_name_verification(target.host));
+  boost::system::error_code not_an_address;
+  asio::ip::make_address(target.host, not_an_address);
+  if (not_an_address) SSL_set_tlsext_host_name(stream.native_handle(), target.host.c_str());  // SNI: names only
+  stream.async_handshake(asio::ssl::stream_base::client,
+                         [&](const boost::system::error_code& result) { error = result; });
+  if (run_with_timeout(io_, connect_timeout, [&] {
+        boost::system::error_code ignored;
+        socket().close(ignored);
+      })) {
+    throw std::runtime_error("server " + name_ + ": no TLS handshake within " +
+                             std::to_string(connect_timeout.count()) + " ms");
+  }
+  if (error) {
+    throw std::runtime_error("server " + name_ + ": TLS handshake failed: " + describe(error) +
+                             " (NETMC_TLS_CA is " + *tls_ca_ + "; the server needs --tls-cert with a certificate "
+                             "that CA signed for '" + target.host + "')");
+  }
 }
 
 void ManagementClient::send(const netmc::v1::Request& request) {
@@ -81,7 +118,7 @@ void ManagementClient::send(const netmc::v1::Request& request) {
   } else {
     frame = encode_frame(request);
   }
-  asio::write(socket_, asio::buffer(frame), error);
+  std::visit([&](auto& stream) { asio::write(stream, asio::buffer(frame), error); }, stream_);
   if (error) throw std::runtime_error("server " + name_ + ": cannot send: " + describe(error));
 }
 
@@ -108,19 +145,28 @@ std::optional<netmc::v1::Response> ManagementClient::receive(std::chrono::millis
 
     boost::system::error_code error;
     std::size_t received = 0;
-    socket_.async_read_some(asio::buffer(buffer), [&](const boost::system::error_code& result, std::size_t size) {
-      error = result;
-      received = size;
-    });
+    std::visit(
+        [&](auto& stream) {
+          stream.async_read_some(asio::buffer(buffer), [&](const boost::system::error_code& result, std::size_t size) {
+            error = result;
+            received = size;
+          });
+        },
+        stream_);
     // On timeout, cancel the read but keep the connection; bytes that raced in are kept.
     run_with_timeout(io_, left, [&] {
       boost::system::error_code ignored;
-      socket_.cancel(ignored);
+      socket().cancel(ignored);
     });
     decoder_.feed(buffer.data(), received);
+    answered_ = answered_ || received > 0;
     if (error == asio::error::operation_aborted) continue;  // the deadline check returns nullopt
-    if (error == asio::error::eof) {
-      throw std::runtime_error("server " + name_ + ": connection closed by the server");
+    if (error == asio::error::eof || error == asio::ssl::error::stream_truncated) {
+      // A TLS-only server closes a plain client at its first bytes, before any answer.
+      throw std::runtime_error("server " + name_ + ": connection closed by the server" +
+                               (answered_ || tls_ ? std::string()
+                                                  : " before it answered (a server started with --tls-cert "
+                                                    "speaks TLS only: set NETMC_TLS_CA to the CA file)"));
     }
     if (error) throw std::runtime_error("server " + name_ + ": connection lost: " + describe(error));
   }

@@ -5,10 +5,13 @@
 #include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange unincluded
 
 #include <boost/asio.hpp>
+#include <boost/asio/ssl.hpp>
 
 #include <chrono>
 #include <optional>
+#include <memory>
 #include <string>
+#include <variant>
 
 #include "idl/management.pb.h"
 #include "server/management/frame_codec.hpp"
@@ -20,6 +23,8 @@ class ManagementClient {
   // host_port: "HOST:PORT" (HOST a name or an IP address, "[v6]:PORT" for IPv6 literals).
   // Throws std::invalid_argument("--server: expected HOST:PORT, got '…'") for a malformed one
   // and std::runtime_error("server HOST:PORT: …") when it cannot resolve or connect in time.
+  // With $NETMC_TLS_CA set, the connection speaks TLS and the server's certificate must be
+  // signed by that CA and name HOST (tls_settings.hpp); otherwise it is refused.
   ManagementClient(const std::string& host_port, std::chrono::milliseconds connect_timeout);
 
   // Sends one framed request, with the token of $NETMC_TOKEN_FILE when that is set; throws
@@ -34,9 +39,14 @@ class ManagementClient {
  private:
   std::string name_;  // "host:port", for messages
   std::optional<std::string> token_;
+  std::optional<std::string> tls_ca_;  // the CA file, when the connection speaks TLS
   boost::asio::io_context io_;
-  boost::asio::ip::tcp::socket socket_;
+  std::shared_ptr<boost::asio::ssl::context> tls_;
+  std::variant<boost::asio::ip::tcp::socket, boost::asio::ssl::stream<boost::asio::ip::tcp::socket>> stream_;
   FrameDecoder decoder_;
+  bool answered_ = false;  // a byte came from the server
+
+  boost::asio::ip::tcp::socket& socket();
 };
 
 }  // namespace netmc::management

@@ -11,18 +11,23 @@ using asio::ip::tcp;
 // Shared with the pending asynchronous operations, so none of them refers to the server object.
 // Everything below is touched only on the acceptor's strand.
 struct ManagementServer::State {
-  State(asio::io_context& context, Handler on, ManagementLimits caps)
+  State(asio::io_context& context, Handler on, ManagementLimits caps, std::shared_ptr<asio::ssl::context> tls_context,
+        Session::HandshakeFailure on_failure)
       : io(context),
         acceptor(asio::make_strand(context)),
         retry(acceptor.get_executor()),
         handler(std::move(on)),
-        limits(caps) {}
+        limits(caps),
+        tls(std::move(tls_context)),
+        on_handshake_failure(std::move(on_failure)) {}
 
   asio::io_context& io;
   tcp::acceptor acceptor;
   asio::steady_timer retry;  // after a transient accept error (e.g. out of descriptors)
   Handler handler;
   ManagementLimits limits;
+  std::shared_ptr<asio::ssl::context> tls;
+  Session::HandshakeFailure on_handshake_failure;
   std::vector<std::weak_ptr<Session>> sessions;
   bool stopped = false;
 };
@@ -48,7 +53,8 @@ void ManagementServer::accept(const std::shared_ptr<State>& state) {
       const auto session = s.lock();
       return !session || !session->open();
     });
-    auto session = std::make_shared<Session>(std::move(socket), state->handler.on_request, state->limits.session);
+    auto session = std::make_shared<Session>(std::move(socket), state->handler.on_request, state->limits.session,
+                                             state->tls, state->on_handshake_failure);
     if (state->sessions.size() >= state->limits.max_connections) {
       // Refused with a reason, not left waiting: the client reports it and exits.
       netmc::v1::Response refusal;
@@ -66,8 +72,11 @@ void ManagementServer::accept(const std::shared_ptr<State>& state) {
 }
 
 ManagementServer::ManagementServer(asio::io_context& io, const std::string& bind_address,
-                                   std::uint16_t port, Handler handler, ManagementLimits limits)
-    : state_(std::make_shared<State>(io, std::move(handler), limits)) {
+                                   std::uint16_t port, Handler handler, ManagementLimits limits,
+                                   std::shared_ptr<asio::ssl::context> tls,
+                                   Session::HandshakeFailure on_handshake_failure)
+    : state_(std::make_shared<State>(io, std::move(handler), limits, std::move(tls),
+                                     std::move(on_handshake_failure))) {
   boost::system::error_code error;
   const auto address = asio::ip::make_address(bind_address, error);
   if (error) throw std::invalid_argument("--listen: '" + bind_address + "' is not an IP address");

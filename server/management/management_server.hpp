@@ -32,9 +32,13 @@ class ManagementServer {
 
   // Listens on bind_address:port (an IP address; port 0 = ephemeral, see port()). Throws
   // std::invalid_argument for a bind_address that is not an IP address and std::runtime_error
-  // when it cannot listen. The io_context is run by the caller.
+  // when it cannot listen. The io_context is run by the caller. With `tls` every connection
+  // speaks TLS (tls_settings.hpp) and a client that does not is closed at its first bytes
+  // (`on_handshake_failure`, optional, says who and why).
   ManagementServer(boost::asio::io_context& io, const std::string& bind_address, std::uint16_t port,
-                   Handler handler, ManagementLimits limits = {});
+                   Handler handler, ManagementLimits limits = {},
+                   std::shared_ptr<boost::asio::ssl::context> tls = nullptr,
+                   Session::HandshakeFailure on_handshake_failure = {});
   ~ManagementServer();  // stop()
   ManagementServer(const ManagementServer&) = delete;
   ManagementServer& operator=(const ManagementServer&) = delete;

@@ -7,18 +7,74 @@ namespace netmc::management {
 namespace asio = boost::asio;
 using asio::ip::tcp;
 
-Session::Session(tcp::socket socket, Dispatch dispatch, SessionLimits limits)
-    : socket_(std::move(socket)),
+namespace {
+
+using TlsStream = asio::ssl::stream<tcp::socket>;
+using Stream = std::variant<tcp::socket, TlsStream>;
+
+Stream make_stream(tcp::socket socket, const std::shared_ptr<asio::ssl::context>& tls) {
+  if (tls) return Stream(std::in_place_index<1>, std::move(socket), *tls);
+  return Stream(std::in_place_index<0>, std::move(socket));
+}
+
+}  // namespace
+
+Session::Session(tcp::socket socket, Dispatch dispatch, SessionLimits limits,
+                 std::shared_ptr<asio::ssl::context> tls, HandshakeFailure on_handshake_failure)
+    : tls_(std::move(tls)),
+      stream_(make_stream(std::move(socket), tls_)),
       dispatch_(std::move(dispatch)),
+      on_handshake_failure_(std::move(on_handshake_failure)),
       limits_(limits),
-      watchdog_(socket_.get_executor()),
-      last_activity_(std::chrono::steady_clock::now()) {}
+      watchdog_(this->socket().get_executor()),
+      last_activity_(std::chrono::steady_clock::now()),
+      ready_(!tls_) {}
+
+tcp::socket& Session::socket() {
+  if (auto* plain = std::get_if<tcp::socket>(&stream_)) return *plain;
+  return std::get<TlsStream>(stream_).next_layer();
+}
 
 void Session::start() {
-  asio::dispatch(socket_.get_executor(), [self = shared_from_this()] {
-    self->read();
+  asio::dispatch(socket().get_executor(), [self = shared_from_this()] {
+    if (self->ready_) {
+      self->read();
+    } else {
+      self->handshake();
+    }
     self->watch();
   });
+}
+
+void Session::handshake() {
+  // A handshake counts as a frame in progress: it must be done within the frame timeout.
+  frame_started_ = std::chrono::steady_clock::now();
+  std::get<TlsStream>(stream_).async_handshake(
+      asio::ssl::stream_base::server, [self = shared_from_this()](const boost::system::error_code& error) {
+        if (self->closing_) {
+          if (!self->outbox_.empty() && !error) {
+            self->ready_ = true;
+            self->write_next();  // what was queued before the close (a refusal), then closed
+          } else {
+            self->abort_on_strand();
+          }
+          return;
+        }
+        if (error) {
+          if (self->on_handshake_failure_) {
+            boost::system::error_code ignored;
+            const auto peer = self->socket().remote_endpoint(ignored);
+            self->on_handshake_failure_(ignored ? "?" : peer.address().to_string() + ":" + std::to_string(peer.port()),
+                                        error.message());
+          }
+          self->abort_on_strand();
+          return;
+        }
+        self->ready_ = true;
+        self->last_activity_ = std::chrono::steady_clock::now();
+        if (!self->outbox_.empty()) self->write_next();
+        self->read();
+      });
 }
 
 void Session::watch() {
@@ -31,7 +87,8 @@ void Session::watch() {
     const auto now = std::chrono::steady_clock::now();
     const bool idle = self->holds_.load(std::memory_order_acquire) == 0 &&
                       now - self->last_activity_ > self->limits_.idle_timeout;
-    const bool stalled = self->decoder_.buffered() > 0 && now - self->frame_started_ > self->limits_.frame_timeout;
+    const bool stalled = (self->decoder_.buffered() > 0 || !self->ready_) &&
+                         now - self->frame_started_ > self->limits_.frame_timeout;
     if (idle || stalled) {
       self->abort_on_strand();
       return;
@@ -41,9 +98,7 @@ void Session::watch() {
 }
 
 void Session::read() {
-  socket_.async_read_some(asio::buffer(buffer_), [self = shared_from_this()](
-                                                     const boost::system::error_code& error,
-                                                     std::size_t size) {
+  const auto on_read = [self = shared_from_this()](const boost::system::error_code& error, std::size_t size) {
     if (error) {  // the peer closed (answer what is queued, then close) or we did
       if (error != asio::error::operation_aborted) self->close_on_strand();
       return;
@@ -74,52 +129,54 @@ void Session::read() {
       return;
     }
     if (!self->closing_) self->read();
-  });
+  };
+  std::visit([&](auto& stream) { stream.async_read_some(asio::buffer(buffer_), on_read); }, stream_);
 }
 
 void Session::send(const netmc::v1::Response& response) {
   if (!open()) return;
   auto frame = std::make_shared<std::string>(encode_frame(response));
   // post, never dispatch: a send from the io thread must not overtake earlier sends from others.
-  asio::post(socket_.get_executor(), [self = shared_from_this(), frame] {
-    if (self->closing_ || !self->socket_.is_open()) return;
+  asio::post(socket().get_executor(), [self = shared_from_this(), frame] {
+    if (self->closing_ || !self->socket().is_open()) return;
     self->outbox_.push_back(std::move(*frame));
-    if (self->outbox_.size() == 1) self->write_next();
+    if (self->outbox_.size() == 1 && self->ready_) self->write_next();
   });
 }
 
 void Session::write_next() {
-  asio::async_write(socket_, asio::buffer(outbox_.front()),
-                    [self = shared_from_this()](const boost::system::error_code& error, std::size_t) {
-                      if (error) {  // peer gone or socket closed: nothing more can leave
-                        self->outbox_.clear();
-                        self->abort_on_strand();
-                        return;
-                      }
-                      self->outbox_.pop_front();
-                      self->last_activity_ = std::chrono::steady_clock::now();
-                      if (!self->outbox_.empty()) {
-                        self->write_next();
-                      } else if (self->closing_) {
-                        self->abort_on_strand();  // the last queued response has left
-                      }
-                    });
+  const auto on_written = [self = shared_from_this()](const boost::system::error_code& error, std::size_t) {
+    if (error) {  // peer gone or socket closed: nothing more can leave
+      self->outbox_.clear();
+      self->abort_on_strand();
+      return;
+    }
+    self->outbox_.pop_front();
+    self->last_activity_ = std::chrono::steady_clock::now();
+    if (!self->outbox_.empty()) {
+      self->write_next();
+    } else if (self->closing_) {
+      self->abort_on_strand();  // the last queued response has left
+    }
+  };
+  std::visit([&](auto& stream) { asio::async_write(stream, asio::buffer(outbox_.front()), on_written); }, stream_);
 }
 
 void Session::close() {
   open_.store(false, std::memory_order_release);
-  asio::post(socket_.get_executor(), [self = shared_from_this()] { self->close_on_strand(); });
+  asio::post(socket().get_executor(), [self = shared_from_this()] { self->close_on_strand(); });
 }
 
 void Session::abort() {
   open_.store(false, std::memory_order_release);
-  asio::post(socket_.get_executor(), [self = shared_from_this()] { self->abort_on_strand(); });
+  asio::post(socket().get_executor(), [self = shared_from_this()] { self->abort_on_strand(); });
 }
 
 void Session::close_on_strand() {
   open_.store(false, std::memory_order_release);
   closing_ = true;
-  if (outbox_.empty()) abort_on_strand();  // otherwise write_next() closes after the last one
+  // Otherwise write_next() closes after the last one (or the handshake, if it is still under way).
+  if (outbox_.empty() && ready_) abort_on_strand();
 }
 
 void Session::abort_on_strand() {
@@ -129,8 +186,8 @@ void Session::abort_on_strand() {
   // with an error and its handler clears the rest.
   boost::system::error_code ignored;
   watchdog_.cancel();
-  socket_.shutdown(tcp::socket::shutdown_both, ignored);
-  socket_.close(ignored);
+  socket().shutdown(tcp::socket::shutdown_both, ignored);
+  socket().close(ignored);
 }
 
 }  // namespace netmc::management

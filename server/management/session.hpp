@@ -6,6 +6,7 @@
 #include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange unincluded
 
 #include <boost/asio.hpp>
+#include <boost/asio/ssl.hpp>
 
 #include <array>
 #include <atomic>
@@ -14,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <variant>
 
 #include "idl/management.pb.h"
 #include "server/management/frame_codec.hpp"
@@ -34,10 +36,15 @@ class Session : public std::enable_shared_from_this<Session> {
  public:
   // Called on the io_context thread, on this session's strand, once per Request.
   using Dispatch = std::function<void(Session&, const netmc::v1::Request&)>;
+  // Called (on the strand) when a TLS session's handshake fails, with the peer and OpenSSL's reason.
+  using HandshakeFailure = std::function<void(const std::string& peer, const std::string& reason)>;
 
   // The socket's executor should be a strand (ManagementServer gives each session its own) so
-  // that the io_context may be run by several threads.
-  Session(boost::asio::ip::tcp::socket socket, Dispatch dispatch, SessionLimits limits = {});
+  // that the io_context may be run by several threads. With `tls`, the connection speaks TLS
+  // (server side) and nothing is read or sent before the handshake has succeeded; a handshake
+  // not done within the frame timeout closes it.
+  Session(boost::asio::ip::tcp::socket socket, Dispatch dispatch, SessionLimits limits = {},
+          std::shared_ptr<boost::asio::ssl::context> tls = nullptr, HandshakeFailure on_handshake_failure = {});
 
   // Starts reading; call once, after construction by std::make_shared.
   void start();
@@ -60,14 +67,18 @@ class Session : public std::enable_shared_from_this<Session> {
   void abort();
 
  private:
+  void handshake();
   void read();
   void watch();  // the limits' timer
+  boost::asio::ip::tcp::socket& socket();  // the TCP socket under the stream
   void write_next();
   void close_on_strand();
   void abort_on_strand();
 
-  boost::asio::ip::tcp::socket socket_;
+  std::shared_ptr<boost::asio::ssl::context> tls_;  // kept for the stream's lifetime
+  std::variant<boost::asio::ip::tcp::socket, boost::asio::ssl::stream<boost::asio::ip::tcp::socket>> stream_;
   Dispatch dispatch_;
+  HandshakeFailure on_handshake_failure_;
   SessionLimits limits_;
   boost::asio::steady_timer watchdog_;
   std::chrono::steady_clock::time_point last_activity_;     // strand only
@@ -76,6 +87,7 @@ class Session : public std::enable_shared_from_this<Session> {
   std::array<char, 8192> buffer_{};
   std::deque<std::string> outbox_;  // front() is being written
   bool closing_ = false;            // strand only
+  bool ready_ = true;               // strand only; false until a TLS handshake has succeeded
   std::atomic<bool> open_{true};
   std::atomic<int> holds_{0};
 };

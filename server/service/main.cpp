@@ -16,6 +16,7 @@
 #include "server/management/access_token.hpp"
 #include "server/management/host_port.hpp"
 #include "server/management/management_server.hpp"
+#include "server/management/tls_settings.hpp"
 #include "server/realtime/realtime_options_cli.hpp"
 #include "server/service/job_service.hpp"
 #include "server/service/node_directory.hpp"
@@ -66,6 +67,12 @@ int main(int argc, char** argv) {
                  "Clients must show the token in this file (one line, 16+ characters; clients name the "
                  "file in $NETMC_TOKEN_FILE); default: no token asked (keep --listen on loopback then)");
   std::string admin_token_file;
+  std::string tls_cert, tls_key;
+  app.add_option("--tls-cert", tls_cert,
+                 "PEM certificate (chain) of the management endpoint: it then speaks TLS 1.3 only, and clients "
+                 "set NETMC_TLS_CA to the CA file that signed it (scripts/make-lab-pki.sh --management HOST)")
+      ->envname("NETMC_TLS_CERT");
+  app.add_option("--tls-key", tls_key, "PEM private key of --tls-cert")->envname("NETMC_TLS_KEY");
   app.add_option("--admin-token-file", admin_token_file,
                  "A client showing the token in this file may also cancel jobs of other connections "
                  "(netmc cancel); it is accepted wherever --token-file's is");
@@ -106,6 +113,10 @@ int main(int argc, char** argv) {
     if (!token_file.empty()) token = netmc::management::AccessToken::from_file(token_file);
     std::optional<netmc::management::AccessToken> admin_token;
     if (!admin_token_file.empty()) admin_token = netmc::management::AccessToken::from_file(admin_token_file);
+    if (tls_cert.empty() != tls_key.empty()) {
+      throw std::invalid_argument(tls_cert.empty() ? "--tls-key: needs --tls-cert" : "--tls-cert: needs --tls-key");
+    }
+    const auto tls = tls_cert.empty() ? nullptr : netmc::management::make_server_tls(tls_cert, tls_key);
     // Before the participant: its threads, and every job thread, inherit the scheduling.
     const auto scheduling_outcome = netmc::realtime::apply_process_scheduling(scheduling);
     for (const auto& fallback : scheduling_outcome.fallbacks) {
@@ -137,14 +148,17 @@ int main(int argc, char** argv) {
           }
           jobs.handle(session.shared_from_this(), request, admin);
         }},
-        limits);
+        limits, tls, [](const std::string& peer, const std::string& reason) {
+          spdlog::warn("management connection from {} closed: TLS handshake failed: {}", peer, reason);
+        });
     boost::asio::signal_set signals(io, SIGINT, SIGTERM);
     signals.async_wait([&](const boost::system::error_code&, int) {
       server.stop();
       io.stop();
     });
-    spdlog::info("netmc {}, listening on {}:{}, DDS domain {} ({}), server {}, time base {}, {}", NETMC_VERSION,
-                 listen_address, server.port(), dds.domain_id, context.describe_transport(), context.identity(),
+    spdlog::info("netmc {}, listening on {}:{} ({}), DDS domain {} ({}), server {}, time base {}, {}", NETMC_VERSION,
+                 listen_address, server.port(),
+                 tls ? netmc::management::describe_server_tls(*tls) : std::string("plain TCP, no TLS"), dds.domain_id, context.describe_transport(), context.identity(),
                  netmc::dds::time_base_name(time_base), scheduling_outcome.describe());
     io.run();
     return 0;

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The management endpoint over TLS, on loopback in lockstep: scripts/make-lab-pki.sh issues the
+# endpoint's certificate for 127.0.0.1; netmc-server takes it (--tls-cert/--tls-key) with a token.
+# A client trusting the lab CA (NETMC_TLS_CA) runs a job and gets the same JSON as netmc sim; a
+# plain client is closed before any answer, with a message saying what to set, and the server's
+# log names it; a client trusting another CA refuses the server.
+# Usage: management_tls.sh BUILD_DIR
+set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
+build=$1
+source "$(dirname "$0")/lib.sh"
+netmc=$build/client/netmc
+root=$(cd "$(dirname "$0")/../.." && pwd)
+
+bash "$root/scripts/make-lab-pki.sh" "$tmp/pki" --server tls-server --management 127.0.0.1 >/dev/null
+bash "$root/scripts/make-lab-pki.sh" "$tmp/other" --server other --management 127.0.0.1 >/dev/null
+head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/token"
+export NETMC_TOKEN_FILE=$tmp/token
+start x "$build/server/axis/netmc-axis" --node tx --axes x --domain "$domain" --transport udp
+start y "$build/server/axis/netmc-axis" --node ty --axes y --domain "$domain" --transport udp
+start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+  --token-file "$tmp/token" --tls-cert "$tmp/pki/management.pem" --tls-key "$tmp/pki/management.key"
+port=$(server_port 127.0.0.1)
+grep -q "($(printf 'TLS 1.3, certificate /CN=netmc management')" "$tmp/server.log" ||
+  { echo "FAIL: the server's start line does not say TLS"; cat "$tmp/server.log"; exit 1; }
+echo "server: $(grep -o 'listening on [^)]*)' "$tmp/server.log")"
+server=(--server "127.0.0.1:$port")
+job=(--quiet --controller adrc --iterations 2 --duration 2s)
+
+# Trusting the lab CA: the job runs, and equals the in-process run.
+NETMC_TLS_CA=$tmp/pki/ca.pem "$netmc" run "${server[@]}" "${job[@]}" --json "$tmp/tls.json" >/dev/null
+"$netmc" sim "${job[@]}" --json "$tmp/sim.json" >/dev/null
+same_json "$tmp/sim.json" "$tmp/tls.json" "netmc run over TLS"
+
+# Without TLS: closed before any answer, and told what to set.
+plain=0
+"$netmc" status "${server[@]}" >"$tmp/plain.txt" 2>&1 || plain=$?
+[ "$plain" -ne 0 ] && grep -q "speaks TLS only: set NETMC_TLS_CA" "$tmp/plain.txt" ||
+  { echo "FAIL: a plain client of the TLS server"; cat "$tmp/plain.txt"; exit 1; }
+echo "plain client: $(cat "$tmp/plain.txt")"
+for _ in $(seq 20); do grep -q "TLS handshake failed" "$tmp/server.log" && break; sleep 0.05; done
+echo "server log: $(grep -o 'management connection from .*' "$tmp/server.log" | head -1)"
+grep -q "management connection from 127.0.0.1:[0-9]* closed: TLS handshake failed" "$tmp/server.log" ||
+  { echo "FAIL: the server's log does not name the refused plain client"; exit 1; }
+
+# Trusting another CA: the client refuses the server.
+stranger=0
+NETMC_TLS_CA=$tmp/other/ca.pem "$netmc" status "${server[@]}" >"$tmp/stranger.txt" 2>&1 || stranger=$?
+[ "$stranger" -ne 0 ] && grep -q "TLS handshake failed: certificate verify failed" "$tmp/stranger.txt" ||
+  { echo "FAIL: a client of another CA trusted the server"; cat "$tmp/stranger.txt"; exit 1; }
+echo "client trusting another CA: $(cat "$tmp/stranger.txt")"
