@@ -3,7 +3,7 @@
 # participant and the signed governance and permissions that say who may write what.
 #
 #   scripts/make-lab-pki.sh DIR --server NAME [--server NAME ...] --node NAME:AXIS[,AXIS...] [...]
-#                               [--reader NAME ...] [--management HOST ...]
+#                               [--reader NAME ...] [--management HOST ...] [--management-client NAME ...]
 #
 # Every participant gets DIR/NAME.pem (certificate) and DIR/NAME.key (its private key, 0600);
 # all share DIR/ca.pem, DIR/governance.p7s and DIR/permissions.p7s. Start each process with
@@ -20,11 +20,14 @@
 # --management HOST (repeatable): DIR/management.pem and .key, a TLS server certificate for the
 # management endpoint (netmc-server --tls-cert/--tls-key) naming each HOST (an IP address or a
 # DNS name) as the clients dial it; clients trust DIR/ca.pem (NETMC_TLS_CA).
+# --management-client NAME (repeatable): DIR/NAME.pem and .key, a TLS client certificate for a
+# server started with --tls-client-ca DIR/ca.pem (clients: NETMC_TLS_CERT, NETMC_TLS_KEY); no
+# DDS permission.
 # Needs openssl. Keys are ECDSA P-256; certificates and permissions hold for 10 years.
 set -euo pipefail
 
 usage() {
-  echo "usage: $0 DIR --server NAME [...] --node NAME:AXIS[,AXIS...] [...] [--reader NAME ...] [--management HOST ...]" >&2
+  echo "usage: $0 DIR --server NAME [...] --node NAME:AXIS[,AXIS...] [...] [--reader NAME ...] [--management HOST ...] [--management-client NAME ...]" >&2
   exit 2
 }
 [ $# -ge 1 ] || usage
@@ -34,6 +37,7 @@ servers=()
 nodes=()
 readers=()
 management=()
+management_clients=()
 while [ $# -gt 0 ]; do
   [ $# -ge 2 ] || usage
   case "$1" in
@@ -41,6 +45,7 @@ while [ $# -gt 0 ]; do
     --node) nodes+=("$2") ;;
     --reader) readers+=("$2") ;;
     --management) management+=("$2") ;;
+    --management-client) management_clients+=("$2") ;;
     *) usage ;;
   esac
   shift 2
@@ -60,6 +65,7 @@ for host in "${management[@]}"; do
     exit 2
   fi
 done
+for client in "${management_clients[@]}"; do name_ok "$client"; done
 
 mkdir -p "$dir"
 umask 077
@@ -77,6 +83,15 @@ if [ -n "$alt" ]; then
     -extfile management.ext -out management.pem 2>/dev/null
   rm -f management.csr management.ext
 fi
+for client in "${management_clients[@]}"; do
+  name_ok "$client"
+  openssl ecparam -name prime256v1 -genkey -noout -out "$client.key"
+  openssl req -new -key "$client.key" -sha256 -subj "/CN=$client" -out "$client.csr" 2>/dev/null
+  printf 'basicConstraints=critical,CA:FALSE\nextendedKeyUsage=clientAuth\n' >"$client.ext"
+  openssl x509 -req -in "$client.csr" -CA ca.pem -CAkey ca.key -CAcreateserial -sha256 -days 3650 \
+    -extfile "$client.ext" -out "$client.pem" 2>/dev/null
+  rm -f "$client.csr" "$client.ext"
+done
 
 issue() {  # issue NAME: NAME.key and NAME.pem signed by the CA
   name_ok "$1"
@@ -191,4 +206,4 @@ for doc in governance permissions; do
   openssl smime -sign -in "$doc.xml" -text -out "$doc.p7s" -signer ca.pem -inkey ca.key
 done
 chmod 644 ca.pem ./*.pem governance.* permissions.*
-echo "$dir: CA, ${#servers[@]} server(s), ${#nodes[@]} node(s), ${#readers[@]} reader(s); governance.p7s, permissions.p7s${alt:+; management.pem for $alt}"
+echo "$dir: CA, ${#servers[@]} server(s), ${#nodes[@]} node(s), ${#readers[@]} reader(s); governance.p7s, permissions.p7s${alt:+; management.pem for $alt}${management_clients[*]:+; management clients ${management_clients[*]}}"

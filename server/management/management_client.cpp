@@ -39,8 +39,8 @@ bool run_with_timeout(asio::io_context& io, std::chrono::milliseconds timeout, C
 
 using TlsStream = asio::ssl::stream<tcp::socket>;
 
-std::shared_ptr<asio::ssl::context> client_tls(const std::optional<std::string>& ca_file) {
-  return ca_file ? make_client_tls(*ca_file) : nullptr;
+std::shared_ptr<asio::ssl::context> client_tls(const std::optional<ClientTlsFiles>& files) {
+  return files ? make_client_tls(*files) : nullptr;
 }
 
 }  // namespace
@@ -53,8 +53,8 @@ tcp::socket& ManagementClient::socket() {
 ManagementClient::ManagementClient(const std::string& host_port,
                                    std::chrono::milliseconds connect_timeout)
     : name_(host_port),
-      tls_ca_(client_tls_ca_from_environment()),
-      tls_(client_tls(tls_ca_)),
+      tls_files_(client_tls_from_environment()),
+      tls_(client_tls(tls_files_)),
       stream_(tls_ ? decltype(stream_)(std::in_place_index<1>, io_, *tls_)
                    : decltype(stream_)(std::in_place_index<0>, io_)) {
   const HostPort target = parse_host_port(host_port, "--server");
@@ -103,8 +103,8 @@ ManagementClient::ManagementClient(const std::string& host_port,
   }
   if (error) {
     throw std::runtime_error("server " + name_ + ": TLS handshake failed: " + describe(error) +
-                             " (NETMC_TLS_CA is " + *tls_ca_ + "; the server needs --tls-cert with a certificate "
-                             "that CA signed for '" + target.host + "')");
+                             " (NETMC_TLS_CA is " + tls_files_->ca_file + "; the server needs --tls-cert with a "
+                             "certificate that CA signed for '" + target.host + "')");
   }
 }
 
@@ -167,6 +167,16 @@ std::optional<netmc::v1::Response> ManagementClient::receive(std::chrono::millis
                                (answered_ || tls_ ? std::string()
                                                   : " before it answered (a server started with --tls-cert "
                                                     "speaks TLS only: set NETMC_TLS_CA to the CA file)"));
+    }
+    if (error && error.category() == asio::error::get_ssl_category()) {
+      // In TLS 1.3 the server judges the client's certificate after the client's handshake.
+      const std::string reason = describe(error);
+      throw std::runtime_error("server " + name_ + ": TLS connection ended: " + reason +
+                               (reason.find("certificate") != std::string::npos || reason.find("unknown ca") !=
+                                                                                        std::string::npos
+                                    ? " (a server started with --tls-client-ca serves only clients that show a "
+                                      "certificate its CA signed: set NETMC_TLS_CERT and NETMC_TLS_KEY)"
+                                    : ""));
     }
     if (error) throw std::runtime_error("server " + name_ + ": connection lost: " + describe(error));
   }

@@ -15,6 +15,7 @@
 
 #include "idl/management.pb.h"
 #include "server/management/frame_codec.hpp"
+#include "server/management/tls_settings.hpp"
 
 namespace netmc::management {
 
@@ -24,7 +25,8 @@ class ManagementClient {
   // Throws std::invalid_argument("--server: expected HOST:PORT, got '…'") for a malformed one
   // and std::runtime_error("server HOST:PORT: …") when it cannot resolve or connect in time.
   // With $NETMC_TLS_CA set, the connection speaks TLS and the server's certificate must be
-  // signed by that CA and name HOST (tls_settings.hpp); otherwise it is refused.
+  // signed by that CA and name HOST (tls_settings.hpp); otherwise it is refused. The client
+  // shows $NETMC_TLS_CERT (key $NETMC_TLS_KEY) to a server that asks for a certificate.
   ManagementClient(const std::string& host_port, std::chrono::milliseconds connect_timeout);
 
   // Sends one framed request, with the token of $NETMC_TOKEN_FILE when that is set; throws
@@ -39,7 +41,7 @@ class ManagementClient {
  private:
   std::string name_;  // "host:port", for messages
   std::optional<std::string> token_;
-  std::optional<std::string> tls_ca_;  // the CA file, when the connection speaks TLS
+  std::optional<ClientTlsFiles> tls_files_;  // when the connection speaks TLS
   boost::asio::io_context io_;
   std::shared_ptr<boost::asio::ssl::context> tls_;
   std::variant<boost::asio::ip::tcp::socket, boost::asio::ssl::stream<boost::asio::ip::tcp::socket>> stream_;

@@ -16,16 +16,28 @@
 namespace netmc::management {
 
 // Throws std::invalid_argument naming the flag and the file when a file cannot be read, is not
-// PEM of the expected kind, or the key does not belong to the certificate.
+// PEM of the expected kind, or the key does not belong to the certificate. With
+// `client_ca_file` (--tls-client-ca), a client must show a certificate that CA signed.
 std::shared_ptr<boost::asio::ssl::context> make_server_tls(const std::string& certificate_file,
-                                                           const std::string& key_file);
-// Throws std::invalid_argument naming NETMC_TLS_CA and the file when it holds no certificate.
-std::shared_ptr<boost::asio::ssl::context> make_client_tls(const std::string& ca_file);
+                                                           const std::string& key_file,
+                                                           const std::string& client_ca_file = "");
 
-// The CA file a client trusts: $NETMC_TLS_CA, if set and not empty.
-std::optional<std::string> client_tls_ca_from_environment();
+// What a client brings to a TLS server: the CA it trusts ($NETMC_TLS_CA) and, for a server that
+// asks for one, its own certificate and key ($NETMC_TLS_CERT, $NETMC_TLS_KEY).
+struct ClientTlsFiles {
+  std::string ca_file;
+  std::string certificate_file;  // "": none
+  std::string key_file;
+};
+// Throws std::invalid_argument naming the variable and the file that is not what it should be.
+std::shared_ptr<boost::asio::ssl::context> make_client_tls(const ClientTlsFiles& files);
 
-// "TLS 1.3, certificate CN=..., valid until ..." of a server context, for its start line.
+// From the environment, when $NETMC_TLS_CA is set and not empty; throws std::invalid_argument
+// when only one of $NETMC_TLS_CERT and $NETMC_TLS_KEY is set, or either without $NETMC_TLS_CA.
+std::optional<ClientTlsFiles> client_tls_from_environment();
+
+// "TLS 1.3, certificate /CN=...[, clients need a certificate of /CN=...]" of a server context,
+// for its start line.
 std::string describe_server_tls(boost::asio::ssl::context& context);
 
 }  // namespace netmc::management

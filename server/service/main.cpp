@@ -71,8 +71,13 @@ int main(int argc, char** argv) {
   app.add_option("--tls-cert", tls_cert,
                  "PEM certificate (chain) of the management endpoint: it then speaks TLS 1.3 only, and clients "
                  "set NETMC_TLS_CA to the CA file that signed it (scripts/make-lab-pki.sh --management HOST)")
-      ->envname("NETMC_TLS_CERT");
-  app.add_option("--tls-key", tls_key, "PEM private key of --tls-cert")->envname("NETMC_TLS_KEY");
+      ->envname("NETMC_SERVER_TLS_CERT");
+  app.add_option("--tls-key", tls_key, "PEM private key of --tls-cert")->envname("NETMC_SERVER_TLS_KEY");
+  std::string tls_client_ca;
+  app.add_option("--tls-client-ca", tls_client_ca,
+                 "With --tls-cert: clients must show a certificate this CA signed (NETMC_TLS_CERT, NETMC_TLS_KEY), "
+                 "besides the token")
+      ->envname("NETMC_SERVER_TLS_CLIENT_CA");
   app.add_option("--admin-token-file", admin_token_file,
                  "A client showing the token in this file may also cancel jobs of other connections "
                  "(netmc cancel); it is accepted wherever --token-file's is");
@@ -116,7 +121,9 @@ int main(int argc, char** argv) {
     if (tls_cert.empty() != tls_key.empty()) {
       throw std::invalid_argument(tls_cert.empty() ? "--tls-key: needs --tls-cert" : "--tls-cert: needs --tls-key");
     }
-    const auto tls = tls_cert.empty() ? nullptr : netmc::management::make_server_tls(tls_cert, tls_key);
+    if (!tls_client_ca.empty() && tls_cert.empty()) throw std::invalid_argument("--tls-client-ca: needs --tls-cert");
+    const auto tls =
+        tls_cert.empty() ? nullptr : netmc::management::make_server_tls(tls_cert, tls_key, tls_client_ca);
     // Before the participant: its threads, and every job thread, inherit the scheduling.
     const auto scheduling_outcome = netmc::realtime::apply_process_scheduling(scheduling);
     for (const auto& fallback : scheduling_outcome.fallbacks) {

@@ -3,7 +3,8 @@
 # endpoint's certificate for 127.0.0.1; netmc-server takes it (--tls-cert/--tls-key) with a token.
 # A client trusting the lab CA (NETMC_TLS_CA) runs a job and gets the same JSON as netmc sim; a
 # plain client is closed before any answer, with a message saying what to set, and the server's
-# log names it; a client trusting another CA refuses the server.
+# log names it; a client trusting another CA refuses the server. A second server asks for client
+# certificates too (--tls-client-ca): it serves the lab's operator certificate and no other.
 # Usage: management_tls.sh BUILD_DIR
 set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
@@ -12,8 +13,10 @@ source "$(dirname "$0")/lib.sh"
 netmc=$build/client/netmc
 root=$(cd "$(dirname "$0")/../.." && pwd)
 
-bash "$root/scripts/make-lab-pki.sh" "$tmp/pki" --server tls-server --management 127.0.0.1 >/dev/null
-bash "$root/scripts/make-lab-pki.sh" "$tmp/other" --server other --management 127.0.0.1 >/dev/null
+bash "$root/scripts/make-lab-pki.sh" "$tmp/pki" --server tls-server --management 127.0.0.1 \
+  --management-client operator >/dev/null
+bash "$root/scripts/make-lab-pki.sh" "$tmp/other" --server other --management 127.0.0.1 \
+  --management-client operator >/dev/null
 head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/token"
 export NETMC_TOKEN_FILE=$tmp/token
 start x "$build/server/axis/netmc-axis" --node tx --axes x --domain "$domain" --transport udp
@@ -49,3 +52,31 @@ NETMC_TLS_CA=$tmp/other/ca.pem "$netmc" status "${server[@]}" >"$tmp/stranger.tx
 [ "$stranger" -ne 0 ] && grep -q "TLS handshake failed: certificate verify failed" "$tmp/stranger.txt" ||
   { echo "FAIL: a client of another CA trusted the server"; cat "$tmp/stranger.txt"; exit 1; }
 echo "client trusting another CA: $(cat "$tmp/stranger.txt")"
+
+# Client certificates: only the lab's operator is served.
+start server2 "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+  --token-file "$tmp/token" --tls-cert "$tmp/pki/management.pem" --tls-key "$tmp/pki/management.key" \
+  --tls-client-ca "$tmp/pki/ca.pem"
+port2=""
+for _ in $(seq 100); do
+  port2=$(sed -n "s/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p" "$tmp/server2.log")
+  [ -n "$port2" ] && break
+  sleep 0.1
+done
+grep -q "clients need a certificate of the client CA" "$tmp/server2.log" ||
+  { echo "FAIL: the second server's start line does not say it asks for client certificates"; cat "$tmp/server2.log"; exit 1; }
+export NETMC_TLS_CA=$tmp/pki/ca.pem
+nocert=0
+"$netmc" status --server "127.0.0.1:$port2" >"$tmp/nocert.txt" 2>&1 || nocert=$?
+[ "$nocert" -ne 0 ] && grep -q "certificate required (a server started with --tls-client-ca" "$tmp/nocert.txt" ||
+  { echo "FAIL: a client without a certificate"; cat "$tmp/nocert.txt"; exit 1; }
+echo "client without a certificate: $(cat "$tmp/nocert.txt")"
+foreign=0
+NETMC_TLS_CERT=$tmp/other/operator.pem NETMC_TLS_KEY=$tmp/other/operator.key \
+  "$netmc" status --server "127.0.0.1:$port2" >"$tmp/foreign.txt" 2>&1 || foreign=$?
+[ "$foreign" -ne 0 ] && grep -q "TLS connection ended: tlsv1 alert unknown ca" "$tmp/foreign.txt" ||
+  { echo "FAIL: a client certificate of another CA"; cat "$tmp/foreign.txt"; exit 1; }
+echo "client certificate of another CA: $(cat "$tmp/foreign.txt")"
+NETMC_TLS_CERT=$tmp/pki/operator.pem NETMC_TLS_KEY=$tmp/pki/operator.key \
+  "$netmc" run --server "127.0.0.1:$port2" "${job[@]}" --json "$tmp/mtls.json" >/dev/null
+same_json "$tmp/sim.json" "$tmp/mtls.json" "netmc run with the operator's client certificate"

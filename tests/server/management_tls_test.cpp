@@ -43,9 +43,10 @@ using Certificate = std::unique_ptr<X509, CertificateDeleter>;
 Key ec_key() { return Key(EVP_EC_gen("P-256")); }
 
 // A certificate for `subject` with `key`, signed by `issuer_key` (self-signed when `issuer` is
-// null); `alt_name` ("IP:127.0.0.1") makes it a server certificate, otherwise a CA.
+// null); `alt_name` ("IP:127.0.0.1") makes it a leaf for `purpose` (serverAuth, clientAuth),
+// otherwise a CA.
 Certificate make_certificate(const std::string& subject, EVP_PKEY* key, X509* issuer, EVP_PKEY* issuer_key,
-                             const std::string& alt_name, long serial) {
+                             const std::string& alt_name, long serial, const std::string& purpose = "serverAuth") {
   Certificate certificate(X509_new());
   X509_set_version(certificate.get(), 2);
   ASN1_INTEGER_set(X509_get_serialNumber(certificate.get()), serial);
@@ -71,7 +72,7 @@ Certificate make_certificate(const std::string& subject, EVP_PKEY* key, X509* is
   } else {
     add(NID_basic_constraints, "critical,CA:FALSE");
     add(NID_subject_alt_name, alt_name);
-    add(NID_ext_key_usage, "serverAuth");
+    add(NID_ext_key_usage, purpose);
   }
   EXPECT_GT(X509_sign(certificate.get(), issuer_key, EVP_sha256()), 0);
   return certificate;
@@ -86,7 +87,8 @@ void write_pem(const fs::path& path, X509* certificate, EVP_PKEY* key) {
 }
 
 // ca.pem, server.pem/.key (for IP 127.0.0.1), elsewhere.pem/.key (for 127.0.0.2, same CA),
-// stranger.pem/.key (for 127.0.0.1, another CA) in a fresh directory.
+// stranger.pem/.key (for 127.0.0.1, another CA), client certificates operator.pem/.key (lab CA)
+// and stranger-operator.pem/.key (another CA) in a fresh directory.
 class TestPki {
  public:
   TestPki() : dir_(fs::temp_directory_path() / ("netmc_tls_test_" + std::to_string(::getpid()))) {
@@ -96,15 +98,17 @@ class TestPki {
     const Certificate other_ca = make_certificate("other CA", other_ca_key.get(), nullptr, other_ca_key.get(), "", 2);
     write_pem(dir_ / "ca.pem", ca.get(), nullptr);
     const auto issue = [&](const std::string& name, const std::string& alt, X509* issuer, EVP_PKEY* issuer_key,
-                           long serial) {
+                           long serial, const std::string& purpose = "serverAuth") {
       const Key key = ec_key();
-      const Certificate certificate = make_certificate(name, key.get(), issuer, issuer_key, alt, serial);
+      const Certificate certificate = make_certificate(name, key.get(), issuer, issuer_key, alt, serial, purpose);
       write_pem(dir_ / (name + ".pem"), certificate.get(), nullptr);
       write_pem(dir_ / (name + ".key"), nullptr, key.get());
     };
     issue("server", "IP:127.0.0.1", ca.get(), ca_key.get(), 3);
     issue("elsewhere", "IP:127.0.0.2", ca.get(), ca_key.get(), 4);
     issue("stranger", "IP:127.0.0.1", other_ca.get(), other_ca_key.get(), 5);
+    issue("operator", "DNS:operator", ca.get(), ca_key.get(), 6, "clientAuth");
+    issue("stranger-operator", "DNS:operator", other_ca.get(), other_ca_key.get(), 7, "clientAuth");
   }
   ~TestPki() { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
@@ -334,8 +338,58 @@ TEST(ManagementTls, BadCertificateOrKeyFilesNameTheFlag) {
                            pki.path("server.pem"),
                        0),
             0u);
-  EXPECT_EQ(error_of([&] { make_client_tls(pki.path("server.key")); }).rfind("NETMC_TLS_CA: " + pki.path("server.key"), 0),
+  EXPECT_EQ(error_of([&] { make_client_tls({pki.path("server.key"), "", ""}); })
+                .rfind("NETMC_TLS_CA: " + pki.path("server.key"), 0),
             0u);
+  EXPECT_EQ(error_of([&] { make_client_tls({pki.path("ca.pem"), pki.path("operator.pem"), pki.path("server.key")}); })
+                .rfind("NETMC_TLS_KEY: " + pki.path("server.key") + ": expected the PEM private key of", 0),
+            0u);
+  EXPECT_EQ(error_of([&] { make_server_tls(pki.path("server.pem"), pki.path("server.key"), pki.path("none.pem")); })
+                .rfind("--tls-client-ca: " + pki.path("none.pem"), 0),
+            0u);
+  {
+    ScopedEnvironment certificate("NETMC_TLS_CERT", pki.path("operator.pem"));
+    EXPECT_EQ(error_of([] { client_tls_from_environment(); }), "NETMC_TLS_CERT: needs NETMC_TLS_KEY (its private key)");
+    ScopedEnvironment key("NETMC_TLS_KEY", pki.path("operator.key"));
+    EXPECT_EQ(error_of([] { client_tls_from_environment(); }),
+              "NETMC_TLS_CERT: needs NETMC_TLS_CA (the CA that signed the server's certificate)");
+  }
+}
+
+// --tls-client-ca: only a client showing a certificate of that CA is served.
+TEST(ManagementTls, AServerThatAsksForClientCertificatesServesOnlyTheLabsClients) {
+  TestPki pki;
+  IoThread runner;
+  std::atomic<int> failures{0};
+  ManagementServer server(runner.io, "127.0.0.1", 0, accept_all(), {},
+                          make_server_tls(pki.path("server.pem"), pki.path("server.key"), pki.path("ca.pem")),
+                          [&](const std::string&, const std::string&) { ++failures; });
+  runner.start();
+  const std::string where = "127.0.0.1:" + std::to_string(server.port());
+  ScopedEnvironment ca("NETMC_TLS_CA", pki.path("ca.pem"));
+  // The outcome of one request: "accepted", or what the client saw.
+  const auto outcome = [&]() -> std::string {
+    try {
+      ManagementClient client(where, 2s);
+      client.send(request_with_token(kToken));
+      const auto response = client.receive(2s);
+      return response && response->has_accepted() ? "accepted" : "no answer";
+    } catch (const std::runtime_error& error) {
+      return error.what();
+    }
+  };
+  EXPECT_NE(outcome().find("certificate required"), std::string::npos) << "without a client certificate";
+  {
+    ScopedEnvironment certificate("NETMC_TLS_CERT", pki.path("stranger-operator.pem"));
+    ScopedEnvironment key("NETMC_TLS_KEY", pki.path("stranger-operator.key"));
+    const std::string seen = outcome();
+    EXPECT_NE(seen, "accepted") << "a client certificate of another CA";
+    EXPECT_NE(seen.find("TLS"), std::string::npos) << seen;
+  }
+  ScopedEnvironment certificate("NETMC_TLS_CERT", pki.path("operator.pem"));
+  ScopedEnvironment key("NETMC_TLS_KEY", pki.path("operator.key"));
+  EXPECT_EQ(outcome(), "accepted");
+  EXPECT_EQ(failures.load(), 2);
 }
 
 }  // namespace
