@@ -16,6 +16,9 @@ class ContourCompensator {
   virtual void begin_iteration(std::size_t samples) = 0;
   // u_e(k) for the contour error eps(k) estimated in cycle k.
   virtual double command(std::size_t cycle, double contour_error) = 0;
+  // The gains (cx, cy) of eq. 11/13 that distribute the command of `cycle` to the axes; called
+  // just before command(). Only compensators that learn over iterations need them.
+  virtual void observe_coupling(std::size_t /*cycle*/, double /*cx*/, double /*cy*/) {}
   // End of iteration j: learning compensators store what they need for j+1.
   virtual void end_iteration() {}
 

@@ -34,6 +34,7 @@ ContouringCycle ContouringController::step(std::size_t cycle, const ReferencePoi
   for (int axis = 0; axis < 2; ++axis) {
     out.axis_command[axis] = axes_[axis]->command(reference.position[axis], measured[axis]);
   }
+  compensator_->observe_coupling(cycle, out.estimate.cx, out.estimate.cy);
   out.coupling_command = compensator_->command(cycle, out.estimate.contour_error);
   // paper 001, eq. 15
   out.command.x() = out.axis_command.x() - out.estimate.cx * out.coupling_command;

@@ -49,6 +49,7 @@ ContouringCycle FeedforwardPidContouring::step(std::size_t cycle, const Referenc
   for (int axis = 0; axis < 2; ++axis) {
     out.axis_command[axis] = axes_[axis].step(reference.position[axis], reference.acceleration[axis], measured[axis]);
   }
+  compensator_->observe_coupling(cycle, out.estimate.cx, out.estimate.cy);
   out.coupling_command = compensator_->command(cycle, out.estimate.contour_error);
   // paper 004, eq. 6 ([D] digest 4.3), the sign convention of paper 001's eq. 15
   out.command.x() = out.axis_command.x() - out.estimate.cx * out.coupling_command;
