@@ -74,32 +74,24 @@ cd "$dir"
 openssl ecparam -name prime256v1 -genkey -noout -out ca.key
 openssl req -x509 -new -key ca.key -sha256 -days 3650 -subj "/CN=netmc lab CA" -out ca.pem 2>/dev/null
 
-if [ -n "$alt" ]; then
-  # The management endpoint's TLS certificate: each host as the clients dial it.
-  openssl ecparam -name prime256v1 -genkey -noout -out management.key
-  openssl req -new -key management.key -sha256 -subj "/CN=netmc management" -out management.csr 2>/dev/null
-  printf 'basicConstraints=critical,CA:FALSE\nsubjectAltName=%s\nextendedKeyUsage=serverAuth\n' "$alt" >management.ext
-  openssl x509 -req -in management.csr -CA ca.pem -CAkey ca.key -CAcreateserial -sha256 -days 3650 \
-    -extfile management.ext -out management.pem 2>/dev/null
-  rm -f management.csr management.ext
-fi
-for client in "${management_clients[@]}"; do
-  name_ok "$client"
-  openssl ecparam -name prime256v1 -genkey -noout -out "$client.key"
-  openssl req -new -key "$client.key" -sha256 -subj "/CN=$client" -out "$client.csr" 2>/dev/null
-  printf 'basicConstraints=critical,CA:FALSE\nextendedKeyUsage=clientAuth\n' >"$client.ext"
-  openssl x509 -req -in "$client.csr" -CA ca.pem -CAkey ca.key -CAcreateserial -sha256 -days 3650 \
-    -extfile "$client.ext" -out "$client.pem" 2>/dev/null
-  rm -f "$client.csr" "$client.ext"
-done
-
-issue() {  # issue NAME: NAME.key and NAME.pem signed by the CA
+# issue NAME [SUBJECT [EXTENSIONS]]: NAME.key and NAME.pem signed by the CA, for SUBJECT (default
+# /CN=NAME), with the X.509 extensions given (lines of an openssl extfile; default none).
+issue() {
   name_ok "$1"
   openssl ecparam -name prime256v1 -genkey -noout -out "$1.key"
-  openssl req -new -key "$1.key" -sha256 -subj "/CN=$1" -out "$1.csr" 2>/dev/null
-  openssl x509 -req -in "$1.csr" -CA ca.pem -CAkey ca.key -CAcreateserial -sha256 -days 3650 -out "$1.pem" 2>/dev/null
-  rm -f "$1.csr"
+  openssl req -new -key "$1.key" -sha256 -subj "${2:-/CN=$1}" -out "$1.csr" 2>/dev/null
+  printf '%s' "${3:-}" >"$1.ext"
+  openssl x509 -req -in "$1.csr" -CA ca.pem -CAkey ca.key -CAcreateserial -sha256 -days 3650 \
+    ${3:+-extfile "$1.ext"} -out "$1.pem" 2>/dev/null
+  rm -f "$1.csr" "$1.ext"
 }
+
+# The management endpoint's TLS certificate (each host as the clients dial it), and its clients'.
+[ -z "$alt" ] || issue management "/CN=netmc management" \
+  "$(printf 'basicConstraints=critical,CA:FALSE\nsubjectAltName=%s\nextendedKeyUsage=serverAuth' "$alt")"
+for client in "${management_clients[@]}"; do
+  issue "$client" "" "$(printf 'basicConstraints=critical,CA:FALSE\nextendedKeyUsage=clientAuth')"
+done
 
 topics() {  # topics T...: <topic> elements
   for t in "$@"; do printf '            <topic>%s</topic>\n' "$t"; done

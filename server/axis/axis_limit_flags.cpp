@@ -84,8 +84,7 @@ std::map<std::string, sim::AxisLimits> parse_axis_limits(const AxisLimitFlags& f
                target.position_max_m = max;
                return true;
              });
-  for (const auto& [axis, axis_limits] : limits) axis_limits.validate();
-  return limits;
+  return limits;  // each entry checked as it was parsed (SimulatedAxis checks them once more)
 }
 
 std::string describe_axis_limits(const std::map<std::string, sim::AxisLimits>& limits,

@@ -255,7 +255,7 @@ void JobService::reply(Job& job, netmc::v1::Response response) {
   if (auto session = job.session.lock()) session->send(response);
 }
 
-bool JobService::start_watch(Job& job, const std::shared_ptr<management::Session>& session,
+void JobService::start_watch(Job& job, const std::shared_ptr<management::Session>& session,
                              std::uint64_t request_id) {
   std::erase_if(job.watchers, [](const Watcher& watcher) {
     const auto other = watcher.session.lock();
@@ -265,7 +265,7 @@ bool JobService::start_watch(Job& job, const std::shared_ptr<management::Session
     session->send(error_response(request_id, "watch: job " + std::to_string(job.id) + " has " +
                                                  std::to_string(job.watchers.size()) +
                                                  " watchers already (the server's limit)"));
-    return false;
+    return;
   }
   netmc::v1::Response response;
   response.set_request_id(request_id);
@@ -284,7 +284,7 @@ bool JobService::start_watch(Job& job, const std::shared_ptr<management::Session
     for (const auto& metrics : job.iterations) send_iteration(metrics);
     job.watchers.push_back({session, request_id});
     session->hold();  // not idle while it waits for the job
-    return true;
+    return;
   }
   // Ended. A job dropped from the queue never ran: its end is its status.
   netmc::v1::JobFinished finished;
@@ -300,7 +300,6 @@ bool JobService::start_watch(Job& job, const std::shared_ptr<management::Session
   end.set_request_id(request_id);
   *end.mutable_finished() = std::move(finished);
   session->send(end);
-  return true;
 }
 
 void JobService::end_watches(Job& job, const netmc::v1::JobFinished& finished) {

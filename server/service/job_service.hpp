@@ -92,8 +92,8 @@ class JobService {
   void finish(const std::shared_ptr<Job>& job);
   void reply(Job& job, netmc::v1::Response response);
   // Under mutex_: a new watcher of `job` gets its status and the iterations so far (and its end,
-  // if it has ended); returns false (and answers why) if the job has too many watchers already.
-  bool start_watch(Job& job, const std::shared_ptr<management::Session>& session, std::uint64_t request_id);
+  // if it has ended); refused with a reason if the job has too many watchers already.
+  void start_watch(Job& job, const std::shared_ptr<management::Session>& session, std::uint64_t request_id);
   // Under mutex_: `job` has ended with `finished`: each watcher gets it and is let go.
   void end_watches(Job& job, const netmc::v1::JobFinished& finished);
 

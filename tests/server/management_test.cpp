@@ -15,6 +15,7 @@
 #include "server/management/access_token.hpp"
 #include "server/management/management_client.hpp"
 #include "server/management/management_server.hpp"
+#include "tests/support/io_thread.hpp"
 
 namespace netmc::management {
 namespace {
@@ -39,25 +40,7 @@ std::vector<std::uint64_t> drain_ids(FrameDecoder& decoder) {
   return ids;
 }
 
-// Runs an io_context on its own thread once there is work (start() after the server exists, or
-// run() returns at once); waits for it with a bound so a hang fails instead of hanging.
-class IoThread {
- public:
-  ~IoThread() { join(); }
-  void start() { done_ = std::async(std::launch::async, [this] { io.run(); }); }
-  // True when run() returned by itself (ran out of work) within `bound`.
-  bool finishes_within(std::chrono::milliseconds bound) {
-    return done_.wait_for(bound) == std::future_status::ready;
-  }
-  void join() {
-    io.stop();
-    if (done_.valid()) done_.get();
-  }
-  boost::asio::io_context io;
-
- private:
-  std::future<void> done_;
-};
+using test_support::IoThread;
 
 TEST(FrameCodec, LengthIsFourBytesBigEndian) {
   netmc::v1::Request request = submit_request(1);

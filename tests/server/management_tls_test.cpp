@@ -14,7 +14,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <future>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -23,6 +22,7 @@
 #include "server/management/management_client.hpp"
 #include "server/management/management_server.hpp"
 #include "server/management/tls_settings.hpp"
+#include "tests/support/io_thread.hpp"
 
 namespace netmc::management {
 namespace {
@@ -127,18 +127,7 @@ class ScopedEnvironment {
   const char* name_;
 };
 
-class IoThread {
- public:
-  ~IoThread() {
-    io.stop();
-    if (done_.valid()) done_.get();
-  }
-  void start() { done_ = std::async(std::launch::async, [this] { io.run(); }); }
-  boost::asio::io_context io;
-
- private:
-  std::future<void> done_;
-};
+using test_support::IoThread;
 
 // Answers every request with "accepted, job 7".
 ManagementServer::Handler accept_all() {
