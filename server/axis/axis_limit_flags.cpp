@@ -27,8 +27,8 @@ bool parse_finite(const std::string& text, double& value) {
 // Applies `set(limits, value text)` to the axes each entry of `text` names; `set` returns false
 // for a value not of the flag's form.
 void apply_flag(const std::string& text, const std::string& flag, const std::string& form,
-                const std::vector<std::string>& axes, std::map<std::string, sim::AxisLimits>& limits,
-                const std::function<bool(sim::AxisLimits&, const std::string&)>& set) {
+                const std::vector<std::string>& axes, std::map<std::string, drive::AxisLimits>& limits,
+                const std::function<bool(drive::AxisLimits&, const std::string&)>& set) {
   if (text.empty()) return;
   std::size_t start = 0;
   while (start <= text.size()) {
@@ -54,12 +54,12 @@ void apply_flag(const std::string& text, const std::string& flag, const std::str
 
 }  // namespace
 
-std::map<std::string, sim::AxisLimits> parse_axis_limits(const AxisLimitFlags& flags,
+std::map<std::string, drive::AxisLimits> parse_axis_limits(const AxisLimitFlags& flags,
                                                          const std::vector<std::string>& axes) {
-  std::map<std::string, sim::AxisLimits> limits;
+  std::map<std::string, drive::AxisLimits> limits;
   for (const auto& axis : axes) limits[axis] = {};
-  const auto positive = [](double sim::AxisLimits::*field) {
-    return [field](sim::AxisLimits& target, const std::string& text) {
+  const auto positive = [](double drive::AxisLimits::*field) {
+    return [field](drive::AxisLimits& target, const std::string& text) {
       double value = 0.0;
       if (!parse_finite(text, value) || !(value > 0.0)) return false;
       target.*field = value;
@@ -67,13 +67,13 @@ std::map<std::string, sim::AxisLimits> parse_axis_limits(const AxisLimitFlags& f
     };
   };
   apply_flag(flags.command, "--command-limit", "a positive number U", axes, limits,
-             positive(&sim::AxisLimits::command));
+             positive(&drive::AxisLimits::command));
   apply_flag(flags.velocity, "--velocity-limit", "a positive number V (m/s)", axes, limits,
-             positive(&sim::AxisLimits::velocity_m_s));
+             positive(&drive::AxisLimits::velocity_m_s));
   apply_flag(flags.slew, "--slew-limit", "a positive number R (units/s)", axes, limits,
-             positive(&sim::AxisLimits::slew_per_s));
+             positive(&drive::AxisLimits::slew_per_s));
   apply_flag(flags.position_window, "--position-window", "MIN:MAX (m, MIN < MAX)", axes, limits,
-             [](sim::AxisLimits& target, const std::string& text) {
+             [](drive::AxisLimits& target, const std::string& text) {
                const std::size_t colon = text.find(':', 1);  // MIN may be negative
                double min = 0.0, max = 0.0;
                if (colon == std::string::npos || !parse_finite(text.substr(0, colon), min) ||
@@ -87,7 +87,7 @@ std::map<std::string, sim::AxisLimits> parse_axis_limits(const AxisLimitFlags& f
   return limits;  // each entry checked as it was parsed (SimulatedAxis checks them once more)
 }
 
-std::string describe_axis_limits(const std::map<std::string, sim::AxisLimits>& limits,
+std::string describe_axis_limits(const std::map<std::string, drive::AxisLimits>& limits,
                                  const std::vector<std::string>& axes) {
   std::string text;
   for (const auto& axis : axes) {

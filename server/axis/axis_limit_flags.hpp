@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "server/sim/axis_limits.hpp"
+#include "server/drive/axis_limits.hpp"
 
 namespace netmc::axis {
 
@@ -22,11 +22,11 @@ struct AxisLimitFlags {
 // The limits of each of `axes` (an axis no flag names has none). Throws std::invalid_argument
 // naming the flag, the axis and the expected form, for an axis the node does not host, a value
 // that is not a finite number (a window with MIN < MAX) or a limit that is not positive.
-std::map<std::string, sim::AxisLimits> parse_axis_limits(const AxisLimitFlags& flags,
+std::map<std::string, drive::AxisLimits> parse_axis_limits(const AxisLimitFlags& flags,
                                                          const std::vector<std::string>& axes);
 
 // "x: command 8, position [-0.05, 0.25] m; y: none", in the order of `axes`.
-std::string describe_axis_limits(const std::map<std::string, sim::AxisLimits>& limits,
+std::string describe_axis_limits(const std::map<std::string, drive::AxisLimits>& limits,
                                  const std::vector<std::string>& axes);
 
 }  // namespace netmc::axis

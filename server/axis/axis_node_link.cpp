@@ -306,8 +306,8 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
   const auto index = static_cast<std::size_t>(it - job_axes.begin());
   JobAxis axis;
   const auto limits = config_.limits.find(begin.axis());
-  axis.endpoint = std::make_unique<sim::AxisEndpoint>(job.axes.at(index)->clone(), job, index,
-                                                      limits == config_.limits.end() ? sim::AxisLimits{}
+  axis.endpoint = std::make_unique<sim::AxisEndpoint>(sim::AxisEndpoint::simulated_drive(job, index), job, index,
+                                                      limits == config_.limits.end() ? drive::AxisLimits{}
                                                                                      : limits->second);
   axis.job_id = begin.job_id();
   axis.cycles = job.cycles();

@@ -30,7 +30,7 @@ struct AxisNodeConfig {
   dds::TimeBase time_base = dds::TimeBase::monotonic;
   // How long a holding server may stay silent before another may take the axes.
   std::chrono::milliseconds hold_lease{10000};
-  std::map<std::string, sim::AxisLimits> limits;  // the operator's, by axis (an axis not here has none)
+  std::map<std::string, drive::AxisLimits> limits;  // the operator's, by axis (an axis not here has none)
 };
 
 // The node's name or one of its axes belongs to a live node already.

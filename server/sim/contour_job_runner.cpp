@@ -4,7 +4,7 @@ namespace netmc::sim {
 
 ContourJobRunner::ContourJobRunner(ContourJob job) : job_(std::move(job)), server_(job_) {
   for (std::size_t axis = 0; axis < job_.axes.size(); ++axis) {
-    axes_.emplace_back(job_.axes[axis]->clone(), job_, axis);
+    axes_.emplace_back(AxisEndpoint::simulated_drive(job_, axis), job_, axis);
   }
 }
 

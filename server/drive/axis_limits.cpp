@@ -1,10 +1,10 @@
-#include "server/sim/axis_limits.hpp"
+#include "server/drive/axis_limits.hpp"
 
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-namespace netmc::sim {
+namespace netmc::drive {
 namespace {
 
 void require_positive(double value, const char* flag) {
@@ -29,6 +29,17 @@ bool AxisLimits::any() const {
          std::isfinite(velocity_m_s) || std::isfinite(slew_per_s);
 }
 
+AxisLimits AxisLimits::or_else(const AxisLimits& fallback) const {
+  const auto pick = [](double own, double other) { return std::isinf(own) ? other : own; };
+  AxisLimits out;
+  out.command = pick(command, fallback.command);
+  out.position_min_m = pick(position_min_m, fallback.position_min_m);
+  out.position_max_m = pick(position_max_m, fallback.position_max_m);
+  out.velocity_m_s = pick(velocity_m_s, fallback.velocity_m_s);
+  out.slew_per_s = pick(slew_per_s, fallback.slew_per_s);
+  return out;
+}
+
 std::string AxisLimits::describe() const {
   if (!any()) return "none";
   std::ostringstream text;
@@ -49,4 +60,4 @@ std::string AxisLimits::describe() const {
   return text.str();
 }
 
-}  // namespace netmc::sim
+}  // namespace netmc::drive

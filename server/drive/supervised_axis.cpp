@@ -1,0 +1,214 @@
+#include "server/drive/supervised_axis.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace netmc::drive {
+
+SupervisedAxis::SupervisedAxis(std::shared_ptr<Drive> drive, double command_limit, AxisLimits limits)
+    : drive_(std::move(drive)), mode_(drive_->job_mode()), command_limit_(command_limit), limits_(limits) {
+  limits_.validate();
+}
+
+void SupervisedAxis::trip(const std::string& reason) {
+  if (!fault_) fault_ = reason;
+  if (!running_) return;
+  running_ = false;
+  try {
+    drive_->write_controlword(controlword::quick_stop);
+  } catch (const DriveError& error) {
+    *fault_ += fmt::format("; quick stop not sent: {}", error.what());
+  }
+}
+
+void SupervisedAxis::quick_stop() {
+  if (!running_) return;
+  running_ = false;
+  try {
+    drive_->write_controlword(controlword::quick_stop);
+  } catch (const DriveError& error) {
+    trip(fmt::format("quick stop not sent: {}", error.what()));
+    return;
+  }
+  refresh();  // the state it is in now
+}
+
+void SupervisedAxis::check_state() {
+  const double x = reading_.position_m;
+  const double v = reading_.velocity_m_s;
+  if (!(x >= limits_.position_min_m && x <= limits_.position_max_m)) {
+    trip(fmt::format("position {:.6g} m outside the window [{:g}, {:g}] m", x, limits_.position_min_m,
+                     limits_.position_max_m));
+  } else if (!(std::abs(v) <= limits_.velocity_m_s)) {
+    trip(fmt::format("velocity {:.6g} m/s beyond the limit {:g} m/s", v, limits_.velocity_m_s));
+  } else if (running_) {
+    const auto state = decode_statusword(reading_.statusword);
+    if (state != PowerState::operation_enabled) {
+      trip(fmt::format("the drive left Operation enabled: {} (statusword 0x{:04X}), error {}",
+                       state ? power_state_name(*state) : "no CiA 402 state", reading_.statusword,
+                       describe_error_code(reading_.error_code)));
+    }
+  }
+}
+
+void SupervisedAxis::refresh() {
+  try {
+    reading_ = drive_->read();
+  } catch (const DriveError& error) {
+    trip(error.what());
+    return;
+  }
+  if (!reading_.has_velocity) {
+    // Differentiated where the drive reports no velocity.
+    reading_.velocity_m_s = previous_position_m_ && reading_time_s_ > previous_time_s_
+                                ? (reading_.position_m - *previous_position_m_) / (reading_time_s_ - previous_time_s_)
+                                : 0.0;
+    previous_position_m_ = reading_.position_m;
+    previous_time_s_ = reading_time_s_;
+  }
+  if (!fault_) check_state();
+}
+
+void SupervisedAxis::enable_now() {
+  // Each step is one transition of the virtual drive, which takes it at once.
+  for (int step = 0; step < 8; ++step) {
+    const auto state = decode_statusword(drive_->read().statusword);
+    if (!state || *state == PowerState::operation_enabled) return;
+    const auto word = controlword_towards(*state, PowerState::operation_enabled);
+    if (!word) return;
+    drive_->write_controlword(*word);
+  }
+}
+
+void SupervisedAxis::begin_iteration(double position_m) {
+  freshness_.reset();
+  input_ = 0.0;  // u(-1) = 0
+  time_s_ = 0.0;
+  input_changed_s_ = 0.0;
+  reading_time_s_ = 0.0;
+  previous_position_m_.reset();
+  if (drive_->virtual_time()) {
+    drive_->restart_at(position_m);
+    if (!fault_) {
+      enable_now();
+      drive_->write_mode(mode_);
+    }
+    job_mode_pending_ = false;
+  } else {
+    job_mode_pending_ = !fault_;
+  }
+  refresh();
+  const auto state = decode_statusword(reading_.statusword);
+  running_ = !fault_ && state == PowerState::operation_enabled;
+  if (!fault_ && !running_) {
+    trip(fmt::format("the drive is not in Operation enabled at the start of the iteration: {} (error {})",
+                     state ? power_state_name(*state) : "no CiA 402 state", describe_error_code(reading_.error_code)));
+  }
+}
+
+void SupervisedAxis::apply_one(const Delivery& delivery) {
+  if (!freshness_.accept(delivery.sequence) || fault_ || !running_) return;
+  // Limits are enforced here, at the axis, whatever the server sent: the operator's trip,
+  // then the job's saturation and the slew rate.
+  if (!std::isfinite(delivery.payload)) {
+    trip(fmt::format("command {:g} (cycle {}) not finite", delivery.payload, delivery.sequence));
+    return;
+  }
+  if (!(std::abs(delivery.payload) <= limits_.command)) {
+    trip(fmt::format("command {:g} (cycle {}) beyond the axis's limit {:g}", delivery.payload, delivery.sequence,
+                     limits_.command));
+    return;
+  }
+  double command = std::clamp(delivery.payload, -command_limit_, command_limit_);
+  if (std::isfinite(limits_.slew_per_s)) {
+    const double step = limits_.slew_per_s * (time_s_ - input_changed_s_);
+    command = std::clamp(command, input_ - step, input_ + step);
+  }
+  if (command != input_) input_changed_s_ = time_s_;
+  input_ = command;
+  try {
+    drive_->write_target(mode_, command);
+  } catch (const DriveError& error) {
+    trip(error.what());
+  }
+}
+
+void SupervisedAxis::apply(const std::vector<Delivery>& deliveries, double until_s) {
+  const bool virtual_time = drive_->virtual_time();
+  for (const Delivery& delivery : deliveries) {
+    const double switch_time = std::clamp(delivery.arrival_time_s, time_s_, until_s);
+    time_s_ = switch_time;
+    if (virtual_time) {
+      drive_->cycle(switch_time);
+      reading_time_s_ = switch_time;
+      refresh();
+    }
+    apply_one(delivery);
+  }
+}
+
+const DriveFeedback& SupervisedAxis::sample(double time_s) {
+  time_s_ = std::max(time_s_, time_s);
+  reading_time_s_ = time_s_;
+  try {
+    if (job_mode_pending_) {
+      // From here the job's commands act; until here the drive held its position.
+      job_mode_pending_ = false;
+      drive_->write_target(mode_, 0.0);
+      drive_->write_mode(mode_);
+    }
+    drive_->cycle(time_s_);
+  } catch (const DriveError& error) {
+    trip(error.what());
+  }
+  refresh();
+  return reading_;
+}
+
+void SupervisedAxis::advance_to(double end_time_s, const std::vector<Delivery>& deliveries) {
+  apply(deliveries, end_time_s);
+  sample(end_time_s);
+}
+
+void SupervisedAxis::finish_reaction() {
+  if (!drive_->virtual_time()) return;
+  // Ten seconds of virtual time at most: a ramp ends a second after its own length anyway.
+  for (int step = 0; step < 1000; ++step) {
+    const auto state = decode_statusword(drive_->read().statusword);
+    if (state != PowerState::quick_stop_active && state != PowerState::fault_reaction_active) break;
+    time_s_ += 0.01;
+    drive_->cycle(time_s_);
+  }
+  reading_ = drive_->read();
+}
+
+const DriveFeedback& SupervisedAxis::poll() {
+  refresh();
+  return reading_;
+}
+
+void SupervisedAxis::clear_fault() {
+  fault_.reset();
+  try {
+    if (decode_statusword(drive_->read().statusword) == PowerState::fault) {
+      // Bit 7's rising edge.
+      drive_->write_controlword(controlword::disable_voltage);
+      drive_->write_controlword(controlword::fault_reset);
+    }
+    reading_ = drive_->read();
+  } catch (const DriveError& error) {
+    fault_ = fmt::format("fault reset failed: {}", error.what());
+  }
+}
+
+PowerState SupervisedAxis::power_state() const {
+  const auto state = decode_statusword(reading_.statusword).value_or(PowerState::not_ready_to_switch_on);
+  if (!fault_) return state;
+  const bool moving = state == PowerState::operation_enabled || state == PowerState::quick_stop_active ||
+                      state == PowerState::fault_reaction_active;
+  return moving ? PowerState::fault_reaction_active : PowerState::fault;
+}
+
+}  // namespace netmc::drive

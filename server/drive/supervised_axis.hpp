@@ -1,0 +1,96 @@
+#pragma once
+// One axis above the drive seam: what the axis node enforces whatever drive is below and
+// whatever any server sends. Setpoints older than the one in force are dropped by sequence
+// number; a command that is not finite or beyond the operator's limit trips the axis, a legal one
+// is clamped to the job's saturation and ramped by the slew limit; a position outside the travel
+// window, a velocity beyond the limit or a drive that leaves Operation enabled on its own trips
+// it too. A trip latches a fault (the first reason) and commands the drive's quick stop: the
+// drive ramps to standstill and the axis shows CiA 402 Fault until the operator resets it.
+//
+// Time: a virtual-time drive (netmc's simulation) is integrated to each setpoint's arrival and to
+// each sample instant, so a setpoint acts from the instant it arrives (paper 001, eq. 2/4: during
+// [t_k, t_k + tau) the previous input still acts). A drive on its own time is written as
+// setpoints arrive and read at the samples.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "netsim/delayed_channel.hpp"
+#include "netsim/freshness_filter.hpp"
+#include "server/drive/axis_limits.hpp"
+#include "server/drive/cia402.hpp"
+#include "server/drive/drive.hpp"
+
+namespace netmc::drive {
+
+class SupervisedAxis {
+ public:
+  using Delivery = netsim::DelayedChannel<double>::Delivery;
+
+  // `command_limit`: the job's drive saturation (clamps); `limits`: the axis operator's (trip).
+  SupervisedAxis(std::shared_ptr<Drive> drive, double command_limit, AxisLimits limits = {});
+
+  // A new iteration from rest at `position_m`. A virtual-time drive restarts there and is enabled
+  // at once (a latched fault stays: only the operator clears it); a drive on its own time must
+  // already stand there enabled (the node positioned it), and takes the job's mode at the next
+  // sample, so that it holds its position until the iteration's t = 0.
+  void begin_iteration(double position_m);
+  // Applies the setpoints delivered by `until_s`, in arrival order (a virtual-time drive is
+  // integrated to each arrival first).
+  void apply(const std::vector<Delivery>& deliveries, double until_s);
+  // The drive at `time_s` (a virtual-time drive integrated to it), read and checked.
+  const DriveFeedback& sample(double time_s);
+  // apply, then sample.
+  void advance_to(double end_time_s, const std::vector<Delivery>& deliveries);
+
+  // No setpoint in time (watchdog) or the job ended: the drive's quick stop, no fault.
+  void quick_stop();
+  // A virtual-time drive in a quick stop or fault reaction runs it to its end (no one else moves
+  // its time once its job has stopped).
+  void finish_reaction();
+  // Reads the drive outside a job (a node polls idle and stopping drives); a failure trips.
+  const DriveFeedback& poll();
+
+  // Why the axis tripped (the first reason), nullopt while healthy.
+  const std::optional<std::string>& fault() const { return fault_; }
+  // The operator's reset: clears the latched fault and resets the drive's (controlword bit 7).
+  void clear_fault();
+  // The axis's CiA 402 state: the drive's, except that a latched fault shows as Fault reaction
+  // active until the drive stands still and as Fault after.
+  PowerState power_state() const;
+  // Whether setpoints act (Operation enabled in a running iteration, no fault, no quick stop).
+  bool running() const { return running_; }
+
+  double input() const { return input_; }  // the last command written
+  std::uint64_t stale_setpoints() const { return freshness_.stale_dropped(); }
+  const DriveFeedback& reading() const { return reading_; }
+  Drive& drive() { return *drive_; }
+
+ private:
+  void trip(const std::string& reason);
+  void refresh();        // reads the drive and checks its state
+  void check_state();
+  void enable_now();     // virtual time: controlwords to Operation enabled, synchronously
+  void apply_one(const Delivery& delivery);
+
+  std::shared_ptr<Drive> drive_;
+  OperationMode mode_;
+  netsim::FreshnessFilter freshness_;
+  double command_limit_;
+  AxisLimits limits_;
+  DriveFeedback reading_;
+  double reading_time_s_ = 0.0;
+  std::optional<double> previous_position_m_;  // for a drive that reports no velocity
+  double previous_time_s_ = 0.0;
+  double input_ = 0.0;
+  double time_s_ = 0.0;
+  double input_changed_s_ = 0.0;  // when the applied input last changed (slew limit)
+  bool running_ = false;
+  bool job_mode_pending_ = false;  // a drive on its own time takes the job's mode at the next sample
+  std::optional<std::string> fault_;
+};
+
+}  // namespace netmc::drive
