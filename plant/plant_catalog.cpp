@@ -417,6 +417,30 @@ std::vector<PlantParameter> plant_parameters(std::string_view name) {
   return out;
 }
 
+// Travel and rated input (see plant_rating in the header). Every studied contour stays inside the
+// travel; the rated input is where a source names the amplifier's range, else an assumption [A]
+// with room above the studies' commands (largest |U| of each preset's runs in brackets):
+//   seed001   [A] paper 001 gives no machine: travel -0.1..0.2 m around its contours (30-80 mm);
+//             rated 1 (the speed-mode servo's command, 1 m/s at steady state) [0.03; 12 in
+//             seed001-long-delay's unstable PID-CCC run].
+//   ballscrew paper 002: stroke 150 mm per axis, 0..0.15 m; [A] +-10 V, the amplifiers' analog
+//             input range (Ka in A/V) [the paper's own runs diverge past it].
+//   linmotor, linmotor-flex  thesis appendix A: 500 x 500 mm travel, -0.25..0.25 m; +-10 V, the
+//             DS1103 outputs to the amplifiers (force linear to about 8 V) [chapter 2-4 runs
+//             reach 30-50 V in their first cycles: the thesis simulates them unsaturated].
+//   hiwin     [A] the thesis gives no travel: -0.05..0.45 m around chapter 5's 0-0.4 m; +-10 V [3].
+//   stage004  [A] paper 004 gives neither: travel -0.2..0.2 m around its -64..100 mm contours;
+//             rated 100 N [50].
+PlantRating plant_rating(std::string_view name) {
+  if (name == "seed001") return {-0.1, 0.2, 1.0};
+  if (name == "ballscrew") return {0.0, 0.15, 10.0};
+  if (name == "linmotor" || name == "linmotor-flex") return {-0.25, 0.25, 10.0};
+  if (name == "hiwin") return {-0.05, 0.45, 10.0};
+  if (name == "stage004") return {-0.2, 0.2, 100.0};
+  throw std::invalid_argument("plant: unknown name '" + std::string(name) + "' (expected one of: " + expected_names() +
+                              ")");
+}
+
 std::string plant_input_unit(std::string_view name) {
   if (name == "seed001") return "m/s^2";
   if (name == "stage004") return "N";

@@ -32,6 +32,18 @@ std::vector<PlantParameter> plant_parameters(std::string_view name);
 // The unit of the plant's input, where an additive disturbance enters (V, N, m/s^2).
 std::string plant_input_unit(std::string_view name);
 
+// What the machine behind a named plant takes: its travel and its drive's rated input (in the
+// plant's input unit). netmc-axis uses them as the default limits of a simulated drive, so that a
+// node started with no limit still trips on a command or a position the machine could not take.
+// Where a source gives no figure the value is an assumption, marked so in plant_catalog.cpp.
+struct PlantRating {
+  double travel_min_m = 0.0;
+  double travel_max_m = 0.0;
+  double rated_input = 0.0;
+};
+// Throws std::invalid_argument for an unknown plant.
+PlantRating plant_rating(std::string_view name);
+
 // A job's changes to one axis of the set: parameters by key, applied in order over the axis's
 // nominal ones, and a disturbance in the plant's input unit.
 struct AxisOverrides {

@@ -5,24 +5,10 @@
 #include <functional>
 #include <stdexcept>
 
+#include "server/drive/drive_spec.hpp"
+
 namespace netmc::axis {
 namespace {
-
-// True when the whole of `text` is a finite number (then in `value`).
-bool parse_finite(const std::string& text, double& value) {
-  // Decimal only: stod would also take hexadecimal, "inf" and "nan".
-  if (text.empty() || text.size() > 64 ||
-      text.find_first_not_of("0123456789+-.eE") != std::string::npos) {
-    return false;
-  }
-  std::size_t used = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return false;
-  }
-  return used == text.size() && std::isfinite(value);
-}
 
 // Applies `set(limits, value text)` to the axes each entry of `text` names; `set` returns false
 // for a value not of the flag's form.
@@ -61,7 +47,7 @@ std::map<std::string, drive::AxisLimits> parse_axis_limits(const AxisLimitFlags&
   const auto positive = [](double drive::AxisLimits::*field) {
     return [field](drive::AxisLimits& target, const std::string& text) {
       double value = 0.0;
-      if (!parse_finite(text, value) || !(value > 0.0)) return false;
+      if (!drive::parse_finite_decimal(text, value) || !(value > 0.0)) return false;
       target.*field = value;
       return true;
     };
@@ -76,8 +62,8 @@ std::map<std::string, drive::AxisLimits> parse_axis_limits(const AxisLimitFlags&
              [](drive::AxisLimits& target, const std::string& text) {
                const std::size_t colon = text.find(':', 1);  // MIN may be negative
                double min = 0.0, max = 0.0;
-               if (colon == std::string::npos || !parse_finite(text.substr(0, colon), min) ||
-                   !parse_finite(text.substr(colon + 1), max) || !(min < max)) {
+               if (colon == std::string::npos || !drive::parse_finite_decimal(text.substr(0, colon), min) ||
+                   !drive::parse_finite_decimal(text.substr(colon + 1), max) || !(min < max)) {
                  return false;
                }
                target.position_min_m = min;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -60,7 +61,8 @@ void EmulatedDrive::restart_at(double position_m) {
   target_velocity_m_s_ = 0.0;
   target_torque_ = 0.0;
   feedforward_velocity_m_s_ = 0.0;
-  last_target_time_ = 0.0;
+  last_target_time_ = -std::numeric_limits<double>::infinity();
+  target_interval_s_ = 0.0;
   velocity_integral_ = 0.0;
 }
 
@@ -133,7 +135,9 @@ void EmulatedDrive::run_loops() {
     input_ = velocity_loop(target_velocity_m_s_, 0.0);
     return;
   }
-  // CSP: position loop at a quarter of the velocity loop's bandwidth.
+  // CSP: position loop at a quarter of the velocity loop's bandwidth. The feed-forward lasts
+  // until the master's next target is overdue.
+  if (time_ - last_target_time_ > 2.0 * target_interval_s_) feedforward_velocity_m_s_ = 0.0;
   const double omega = 2.0 * kPi * settings_.velocity_loop_hz;
   const double reference = feedforward_velocity_m_s_ + omega / 4.0 * (target_position_m_ - plant_->position());
   input_ = velocity_loop(reference, 0.0);
@@ -168,19 +172,26 @@ void EmulatedDrive::set_mode(OperationMode mode) {
   mode_ = mode;
   velocity_integral_ = 0.0;
   feedforward_velocity_m_s_ = 0.0;
+  // A new mode starts from where the axis is: no jump to a target written for another mode, and
+  // its first target is a position, not a motion.
+  target_position_m_ = plant_->position();
+  target_velocity_m_s_ = 0.0;
+  last_target_time_ = -std::numeric_limits<double>::infinity();
   next_cycle_ = time_;
 }
 
 void EmulatedDrive::set_target(OperationMode mode, double value) {
   switch (mode) {
-    case OperationMode::csp:
-      // The targets' own velocity: cyclic targets move by it every cycle of the master.
-      if (time_ > last_target_time_) {
-        feedforward_velocity_m_s_ = (value - target_position_m_) / (time_ - last_target_time_);
-      }
+    case OperationMode::csp: {
+      // The targets' own velocity: cyclic targets move by it every cycle of the master. A target
+      // after a pause (more than 50 ms) is a new position, not a motion.
+      const double interval = time_ - last_target_time_;
+      feedforward_velocity_m_s_ = interval > 0.0 && interval <= 0.05 ? (value - target_position_m_) / interval : 0.0;
+      target_interval_s_ = interval;
       last_target_time_ = time_;
       target_position_m_ = value;
       break;
+    }
     case OperationMode::csv: target_velocity_m_s_ = value; break;
     case OperationMode::cst: target_torque_ = value; break;
   }

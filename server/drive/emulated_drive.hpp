@@ -88,7 +88,8 @@ class EmulatedDrive {
   double target_velocity_m_s_ = 0.0;
   double target_torque_ = 0.0;
   double feedforward_velocity_m_s_ = 0.0;  // CSP: the targets' own velocity
-  double last_target_time_ = 0.0;
+  double last_target_time_ = -std::numeric_limits<double>::infinity();
+  double target_interval_s_ = 0.0;         // between the last two CSP targets
   double velocity_integral_ = 0.0;
   double ramp_start_time_ = 0.0;
   double ramp_start_velocity_ = 0.0;

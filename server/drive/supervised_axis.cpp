@@ -38,7 +38,9 @@ void SupervisedAxis::quick_stop() {
 void SupervisedAxis::check_state() {
   const double x = reading_.position_m;
   const double v = reading_.velocity_m_s;
-  if (!(x >= limits_.position_min_m && x <= limits_.position_max_m)) {
+  const bool returning = return_allowed_ && ((x < limits_.position_min_m && v >= 0.0) ||
+                                              (x > limits_.position_max_m && v <= 0.0));
+  if (!(x >= limits_.position_min_m && x <= limits_.position_max_m) && !returning) {
     trip(fmt::format("position {:.6g} m outside the window [{:g}, {:g}] m", x, limits_.position_min_m,
                      limits_.position_max_m));
   } else if (!(std::abs(v) <= limits_.velocity_m_s)) {
@@ -155,8 +157,9 @@ const DriveFeedback& SupervisedAxis::sample(double time_s) {
   try {
     if (job_mode_pending_) {
       // From here the job's commands act; until here the drive held its position.
+      // Torque and velocity start at zero; a position target starts where the axis stands.
       job_mode_pending_ = false;
-      drive_->write_target(mode_, 0.0);
+      drive_->write_target(mode_, mode_ == OperationMode::csp ? reading_.position_m : 0.0);
       drive_->write_mode(mode_);
     }
     drive_->cycle(time_s_);
@@ -184,19 +187,23 @@ void SupervisedAxis::finish_reaction() {
   reading_ = drive_->read();
 }
 
-const DriveFeedback& SupervisedAxis::poll() {
+const DriveFeedback& SupervisedAxis::poll(double time_s) {
+  reading_time_s_ = time_s;
   refresh();
   return reading_;
+}
+
+void reset_drive_fault(Drive& drive) {
+  if (decode_statusword(drive.read().statusword) == PowerState::fault) {
+    drive.write_controlword(controlword::disable_voltage);
+    drive.write_controlword(controlword::fault_reset);
+  }
 }
 
 void SupervisedAxis::clear_fault() {
   fault_.reset();
   try {
-    if (decode_statusword(drive_->read().statusword) == PowerState::fault) {
-      // Bit 7's rising edge.
-      drive_->write_controlword(controlword::disable_voltage);
-      drive_->write_controlword(controlword::fault_reset);
-    }
+    reset_drive_fault(*drive_);
     reading_ = drive_->read();
   } catch (const DriveError& error) {
     fault_ = fmt::format("fault reset failed: {}", error.what());

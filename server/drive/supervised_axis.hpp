@@ -26,6 +26,9 @@
 
 namespace netmc::drive {
 
+// The master's fault reset: bit 7's rising edge, if the drive is in Fault. Throws DriveError.
+void reset_drive_fault(Drive& drive);
+
 class SupervisedAxis {
  public:
   using Delivery = netsim::DelayedChannel<double>::Delivery;
@@ -51,8 +54,15 @@ class SupervisedAxis {
   // A virtual-time drive in a quick stop or fault reaction runs it to its end (no one else moves
   // its time once its job has stopped).
   void finish_reaction();
-  // Reads the drive outside a job (a node polls idle and stopping drives); a failure trips.
-  const DriveFeedback& poll();
+  // Reads the drive outside the samples (a node watches a drive it positions or holds) at
+  // `time_s` (for a velocity it differentiates); a failure or a limit trips.
+  const DriveFeedback& poll(double time_s);
+  // The iteration is over: setpoints no longer act (the drive keeps its state).
+  void end_iteration() { running_ = false; }
+  // While the node moves the axis back to a start inside the travel window (after a trip left it
+  // outside), being outside is no trip as long as it does not move further out: a software
+  // limit switch lets the axis back in.
+  void allow_return_into_window(bool allow) { return_allowed_ = allow; }
 
   // Why the axis tripped (the first reason), nullopt while healthy.
   const std::optional<std::string>& fault() const { return fault_; }
@@ -68,6 +78,7 @@ class SupervisedAxis {
   std::uint64_t stale_setpoints() const { return freshness_.stale_dropped(); }
   const DriveFeedback& reading() const { return reading_; }
   Drive& drive() { return *drive_; }
+  const std::shared_ptr<Drive>& shared_drive() const { return drive_; }
 
  private:
   void trip(const std::string& reason);
@@ -90,6 +101,7 @@ class SupervisedAxis {
   double input_changed_s_ = 0.0;  // when the applied input last changed (slew limit)
   bool running_ = false;
   bool job_mode_pending_ = false;  // a drive on its own time takes the job's mode at the next sample
+  bool return_allowed_ = false;
   std::optional<std::string> fault_;
 };
 

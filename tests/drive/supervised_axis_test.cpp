@@ -10,20 +10,14 @@
 #include "plant/second_order_axis.hpp"
 #include "server/drive/simulated_drive.hpp"
 #include "server/drive/supervised_axis.hpp"
+#include "tests/drive/power_state_printer.hpp"
+#include "tests/drive/linear_servo_plant.hpp"
 
 namespace netmc::drive {
-
-void PrintTo(PowerState state, std::ostream* out) { *out << power_state_name(state); }
-
 namespace {
 
-// x'' = -20 x' + 20 u: a speed-mode servo whose speed follows u with a 50 ms time constant.
 std::shared_ptr<SimulatedDrive> linear_drive() {
-  plant::SecondOrderAxisParameters p;
-  p.a1 = 0.0;
-  p.a2 = -20.0;
-  p.b = 20.0;
-  auto drive = std::make_shared<SimulatedDrive>(std::make_unique<plant::SecondOrderAxis>(p), "sim:test");
+  auto drive = std::make_shared<SimulatedDrive>(linear_servo_plant(), "sim:test");
   drive->open();
   return drive;
 }
