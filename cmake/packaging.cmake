@@ -15,6 +15,15 @@ foreach(dir control plant netsim)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/netmc/${dir}
     COMPONENT dev FILES_MATCHING PATTERN "*.hpp")
 endforeach()
+# The drive plugin ABI (a C header, no code): netmc::drive_plugin gives <netmc/drive_plugin.h>
+# to a lab's plugin; the example plugin is its starting point.
+set_target_properties(netmc_drive_plugin_abi PROPERTIES EXPORT_NAME drive_plugin)
+install(TARGETS netmc_drive_plugin_abi EXPORT netmcTargets COMPONENT dev)
+install(FILES ${PROJECT_SOURCE_DIR}/server/drive/include/netmc/drive_plugin.h
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/netmc COMPONENT dev)
+install(FILES ${PROJECT_SOURCE_DIR}/examples/drive_plugin/CMakeLists.txt
+  ${PROJECT_SOURCE_DIR}/examples/drive_plugin/example_drive.c ${PROJECT_SOURCE_DIR}/examples/drive_plugin/README.md
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/drive_plugin COMPONENT dev)
 set(NETMC_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/netmc)
 install(EXPORT netmcTargets NAMESPACE netmc:: DESTINATION ${NETMC_CMAKE_DIR} COMPONENT dev)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/netmcConfig.cmake.in
@@ -64,7 +73,7 @@ set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME netmc)
 set(CPACK_DEBIAN_DEV_PACKAGE_NAME netmc-dev)
 set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "libeigen3-dev (>= 3.4)")
 set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
-set(CPACK_COMPONENT_DEV_DESCRIPTION "netmc's pure libraries (control, plant, netsim) for find_package(netmc)")
+set(CPACK_COMPONENT_DEV_DESCRIPTION "netmc's pure libraries (control, plant, netsim) and drive plugin ABI for find_package(netmc)")
 set(CPACK_PACKAGE_NAME netmc)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Networked motion control over DDS: server, axis nodes, client and libraries")

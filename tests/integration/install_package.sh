@@ -4,6 +4,8 @@
 # package, the systemd units (naming the installed programs; systemd-analyze verifies them) and
 # the examples in place; a project of its own (tests/install/consumer) finds netmc with
 # find_package, links netmc::control without Fast DDS or protobuf, and its ADRC loop settles.
+# The installed example drive plugin builds out of tree against the prefix (netmc::drive_plugin)
+# and exports the ABI's entry object and nothing else; the installed ABI header compiles as C and C++.
 # The example specs are one per preset and run. Then CPack's two .debs: netmc (programs, units,
 # examples; its dependencies Debian's runtime packages) and netmc-dev (libraries, headers), under /usr.
 # Usage: install_package.sh BUILD_DIR
@@ -23,7 +25,8 @@ for program in netmc netmc-server netmc-axis; do
 done
 echo "installed: netmc, netmc-server, netmc-axis --version: $version"
 for file in include/netmc/control/axis/adrc_controller.hpp include/netmc/plant/plant_catalog.hpp \
-  include/netmc/netsim/delay_model.hpp share/netmc/examples/etc-netmc/server.env \
+  include/netmc/netsim/delay_model.hpp include/netmc/drive_plugin.h \
+  share/netmc/examples/drive_plugin/example_drive.c share/netmc/examples/etc-netmc/server.env \
   share/netmc/examples/dds-profiles/udp_only.xml share/doc/netmc/LICENSE; do
   [ -f "$prefix/$file" ] || { echo "FAIL: $file not installed"; exit 1; }
 done
@@ -60,6 +63,32 @@ fi
 "$tmp/consumer/adrc_step"
 echo "find_package(netmc) + netmc::control: built without Fast DDS or protobuf, and ran"
 
+# A lab's drive plugin: the installed example, copied out and built against the prefix as a lab
+# builds its own. Its path ($drive_plugin) is what --drive plugin:PATH names.
+drive_plugin=$tmp/drive-plugin/libexample_drive.so
+cp -r "$prefix/share/netmc/examples/drive_plugin" "$tmp/drive-plugin-src"
+cmake -S "$tmp/drive-plugin-src" -B "$tmp/drive-plugin" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" >"$tmp/drive-plugin-configure.log"
+cmake --build "$tmp/drive-plugin" >"$tmp/drive-plugin-build.log"
+[ -f "$drive_plugin" ] || { echo "FAIL: the example drive plugin did not build to $drive_plugin"; exit 1; }
+exported=$(nm -D --defined-only "$drive_plugin" | awk '{print $3}' | tr '\n' ' ')
+[ "$exported" = "netmc_drive_plugin " ] ||
+  { echo "FAIL: the example plugin exports '$exported', not netmc_drive_plugin alone"; exit 1; }
+objdump -T "$drive_plugin" | grep -Eq ' DO .* netmc_drive_plugin$' ||
+  { echo "FAIL: netmc_drive_plugin is not an exported data object"; objdump -T "$drive_plugin"; exit 1; }
+# The ABI header alone, from plain C (C99 and C11) and from C++, warnings as errors.
+cat >"$tmp/abi_check.c" <<'CHECK'
+#include <netmc/drive_plugin.h>
+typedef char abi_version_is_1[NETMC_DRIVE_PLUGIN_ABI_VERSION == 1 ? 1 : -1];
+const netmc_drive_plugin_table* entry_of(const netmc_drive_plugin_table* table) { return table; }
+CHECK
+for std in c99 c11; do
+  cc -std=$std -Wall -Wextra -Wpedantic -Werror -I"$prefix/include" -c "$tmp/abi_check.c" -o "$tmp/abi_check.o"
+done
+c++ -x c++ -std=c++17 -Wall -Wextra -Wpedantic -Werror -I"$prefix/include" -c "$tmp/abi_check.c" -o "$tmp/abi_check.o"
+echo "drive plugin: the installed example built against the prefix, exports netmc_drive_plugin only;" \
+  "<netmc/drive_plugin.h> compiles as C99, C11 and C++17"
+
 cpack --config "$build/CPackConfig.cmake" -B "$tmp/package" >"$tmp/cpack.log" 2>&1 ||
   { cat "$tmp/cpack.log"; exit 1; }
 deb=$(ls "$tmp/package"/netmc_"$version"_*.deb)
@@ -80,7 +109,9 @@ grep -q "^ExecStart=/usr/bin/netmc-axis " "$tmp/unit" ||
   { echo "FAIL: the packaged unit does not name /usr/bin/netmc-axis"; exit 1; }
 dpkg-deb -c "$dev" >"$tmp/dev-contents"
 grep -q " ./usr/include/netmc/control/axis/adrc_controller.hpp$" "$tmp/dev-contents" &&
+  grep -q " ./usr/include/netmc/drive_plugin.h$" "$tmp/dev-contents" &&
+  grep -q " ./usr/share/netmc/examples/drive_plugin/example_drive.c$" "$tmp/dev-contents" &&
   [[ "$(dpkg-deb -f "$dev" Depends)" == *libeigen3-dev* ]] ||
-  { echo "FAIL: netmc-dev lacks the headers or the Eigen dependency"; exit 1; }
+  { echo "FAIL: netmc-dev lacks the headers, the example drive plugin or the Eigen dependency"; exit 1; }
 echo "$(basename "$dev"): $(du -k "$dev" | cut -f1) KiB, Depends: $(dpkg-deb -f "$dev" Depends)"
 echo "the .debs hold the programs, units and examples (netmc) and the libraries and headers (netmc-dev) under /usr"
