@@ -38,6 +38,7 @@ Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
   const auto run_submit = add_submit_command(app);
   const auto run_watch = add_watch_command(app);
   const auto run_nodes = add_nodes_command(app);
+  const auto run_reset = add_reset_command(app);
   const auto run_status = add_status_command(app);
   const auto run_cancel = add_cancel_command(app);
   const auto run_cee = add_cee_command(app);
@@ -61,7 +62,13 @@ Takes every flag and preset of netmc run except --json and --curve (a watcher wr
 
 Exit code 1 when the job fails or is cancelled (the message says why).)");
   app.get_subcommand("nodes")->footer(R"(Examples:
-  netmc nodes --server 127.0.0.1:7300     # node, axes, plant, clock, last seen, health)");
+  netmc nodes --server 127.0.0.1:7300     # node, axes, plant, clock, last seen, health; per axis its
+                                          # drive, CiA 402 state, error code, last fault and limits)");
+  app.get_subcommand("reset")->footer(R"(Examples:
+  NETMC_TOKEN_FILE=admin.token netmc reset lab-x --server 10.0.0.1:7300   # every axis of node lab-x
+  netmc reset lab-x --axis x                                              # one axis
+
+Exit code 1 when the node still reports the fault (one the drive cannot clear), or is gone.)");
   app.get_subcommand("cee")->footer(R"(Examples:
   netmc cee                                # 2000 samples per contour, seed 1
   netmc cee --points 20000 --max-lag-ms 5 --normal-sd-um 10)");
@@ -96,6 +103,7 @@ Exit code 1 when the job fails or is cancelled (the message says why).)");
     if (app.got_subcommand("status")) return run_status();
     if (app.got_subcommand("cancel")) return run_cancel();
     if (app.got_subcommand("nodes")) return run_nodes();
+    if (app.got_subcommand("reset")) return run_reset();
     if (app.got_subcommand("cee")) return run_cee();
     if (app.got_subcommand("qft")) return run_qft();
     std::cout << app.help();

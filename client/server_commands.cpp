@@ -5,11 +5,13 @@
 #include <iostream>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 
 #include "client/study_flags.hpp"
 #include "client/study_report.hpp"
 #include "client/verbosity.hpp"
 #include "idl/management.pb.h"
+#include "server/drive/cia402.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/management/management_client.hpp"
 
@@ -237,13 +239,45 @@ std::function<int()> add_watch_command(CLI::App& app) {
   };
 }
 
+namespace {
+
+// netmc nodes's table: a line per node, then a line per axis with its drive and CiA 402 state.
+void print_nodes(const netmc::v1::NodesReply& reply) {
+  fmt::print("{:<20} {:<10} {:<10} {:<9} {:>8} {:>18} {:>9}  {}\n", "node", "axes", "plant", "clock",
+             "seen [s]", "offset [s]", "rtt [ms]", "health");
+  for (const auto& node : reply.nodes()) {
+    std::string axes;
+    for (const auto& axis : node.axes()) axes += (axes.empty() ? "" : ",") + axis;
+    const std::string offset = node.clock_measured() ? fmt::format("{:+.6f}", node.clock_offset_s()) : "-";
+    const std::string rtt = node.clock_measured() ? fmt::format("{:.3f}", node.round_trip_s() * 1e3) : "-";
+    fmt::print("{:<20} {:<10} {:<10} {:<9} {:>8.1f} {:>18} {:>9}  {}{}{}\n", node.node(), axes, node.plant(),
+               node.clock(), node.last_seen_s(), offset, rtt, node.health(),
+               node.held_by().empty() ? "" : " (held by " + node.held_by() + ")",
+               node.server_name().empty() ? "" : " (obeys " + node.server_name() + ")");
+    for (const auto& drive : node.drives()) {
+      fmt::print("  axis {:<12} {:<34} {:<22} error {}{}{}\n", drive.axis(), drive.drive(), drive.state(),
+                 drive::describe_error_code(static_cast<std::uint16_t>(drive.error_code())),
+                 drive.fault_latched() ? "  FAULT: " + drive.last_fault()
+                 : drive.last_fault().empty() ? ""
+                                              : "  last fault: " + drive.last_fault(),
+                 drive.limits().empty() ? "" : "  limits " + drive.limits());
+    }
+  }
+  if (reply.nodes_size() == 0) fmt::print("(no axis node discovered)\n");
+}
+
+}  // namespace
+
 std::function<int()> add_nodes_command(CLI::App& app) {
   struct Flags {
     std::string server = "127.0.0.1:7300";
     bool json = false;
   };
   auto flags = std::make_shared<Flags>();
-  CLI::App* nodes = app.add_subcommand("nodes", "List the axis nodes a netmc-server has discovered");
+  CLI::App* nodes = app.add_subcommand(
+      "nodes", "List the axis nodes a netmc-server has discovered, with each axis's drive, CiA 402 state and last fault "
+               "(seen [s]: seconds since the node's last status; a node reports every 0.5 s and is dropped after 2.5 s "
+               "of silence)");
   add_server_option(nodes, flags->server);
   nodes->add_flag("--json", flags->json,
                   "Print the reply as JSON (protobuf JSON mapping of netmc.v1.NodesReply), for scripts");
@@ -253,19 +287,66 @@ std::function<int()> add_nodes_command(CLI::App& app) {
       fmt::print("{}\n", job::to_json(response.nodes()));
       return 0;
     }
-    fmt::print("{:<20} {:<10} {:<10} {:<9} {:>8} {:>18} {:>9}  {}\n", "node", "axes", "plant", "clock",
-               "seen [s]", "offset [s]", "rtt [ms]", "health");
-    for (const auto& node : response.nodes().nodes()) {
-      std::string axes;
-      for (const auto& axis : node.axes()) axes += (axes.empty() ? "" : ",") + axis;
-      const std::string offset = node.clock_measured() ? fmt::format("{:+.6f}", node.clock_offset_s()) : "-";
-      const std::string rtt = node.clock_measured() ? fmt::format("{:.3f}", node.round_trip_s() * 1e3) : "-";
-      fmt::print("{:<20} {:<10} {:<10} {:<9} {:>8.1f} {:>18} {:>9}  {}{}\n", node.node(), axes, node.plant(),
-                 node.clock(), node.last_seen_s(), offset, rtt, node.health(),
-                 node.held_by().empty() ? "" : " (held by " + node.held_by() + ")");
-    }
-    if (response.nodes().nodes_size() == 0) fmt::print("(no axis node discovered)\n");
+    print_nodes(response.nodes());
     return 0;
+  };
+}
+
+std::function<int()> add_reset_command(CLI::App& app) {
+  struct Flags {
+    std::string server = "127.0.0.1:7300";
+    std::string node;
+    std::vector<std::string> axes;
+    int wait_ms = 5000;
+  };
+  auto flags = std::make_shared<Flags>();
+  CLI::App* reset = app.add_subcommand(
+      "reset", "Reset the latched faults of a node's axes (CiA 402 fault reset), through the server; needs the "
+               "server's admin token where it has one (NETMC_TOKEN_FILE naming the file of netmc-server "
+               "--admin-token-file). Waits until the node reports the axes out of Fault.");
+  reset->add_option("NODE", flags->node, "The node's name (netmc nodes lists them)")->required();
+  reset->add_option("--axis", flags->axes, "Only this axis (repeatable; default: every axis of the node)");
+  add_server_option(reset, flags->server);
+  reset->add_option("--wait", flags->wait_ms, "Milliseconds to wait for the node to report the reset")
+      ->check(CLI::Range(0, 60000));
+  return [flags]() -> int {
+    ask_server(flags->server, [&](netmc::v1::Request& request) {
+      auto& asked = *request.mutable_reset();
+      asked.set_node(flags->node);
+      for (const auto& axis : flags->axes) asked.add_axes(axis);
+    });
+    // The node answers on its status: poll the server's view until no asked axis is in fault.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(flags->wait_ms);
+    while (true) {
+      const auto reply = ask_server(flags->server, [](netmc::v1::Request& request) { request.mutable_nodes(); }).nodes();
+      std::vector<std::string> still;
+      const netmc::v1::NodeInfo* node = nullptr;
+      for (const auto& candidate : reply.nodes()) {
+        if (candidate.node() == flags->node) node = &candidate;
+      }
+      if (node) {
+        for (const auto& drive : node->drives()) {
+          const bool asked = flags->axes.empty() ||
+                             std::find(flags->axes.begin(), flags->axes.end(), drive.axis()) != flags->axes.end();
+          if (asked && (drive.fault_latched() || drive.state() == "Fault")) still.push_back(drive.axis());
+        }
+      }
+      if (node && still.empty()) {
+        netmc::v1::NodesReply shown;
+        *shown.add_nodes() = *node;
+        print_nodes(shown);
+        return 0;
+      }
+      if (std::chrono::steady_clock::now() >= deadline) {
+        std::string names;
+        for (const auto& axis : still) names += (names.empty() ? "" : ", ") + axis;
+        throw std::runtime_error(node ? "reset: node " + flags->node + " still reports axis " + names +
+                                            " in fault after " + std::to_string(flags->wait_ms) +
+                                            " ms (a fault the drive cannot clear: see netmc nodes)"
+                                      : "reset: node " + flags->node + " is no longer listed by the server");
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
   };
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// The commands that talk to a running netmc-server: run, submit, watch, nodes, status, cancel.
+// The commands that talk to a running netmc-server: run, submit, watch, nodes, reset, status, cancel.
 
 #include <CLI/CLI.hpp>
 
@@ -18,7 +18,10 @@ std::function<int()> add_run_command(CLI::App& app);
 std::function<int()> add_submit_command(CLI::App& app);
 // netmc watch JOB: a job's iterations and result, from any connection.
 std::function<int()> add_watch_command(CLI::App& app);
+// netmc nodes: the server's axis nodes, each axis with its drive, CiA 402 state and last fault.
 std::function<int()> add_nodes_command(CLI::App& app);
+// netmc reset NODE: the operator's reset of a node's latched axis faults (admin token).
+std::function<int()> add_reset_command(CLI::App& app);
 // netmc status [JOB]: the server's jobs (state, iterations, what a queued one waits behind).
 std::function<int()> add_status_command(CLI::App& app);
 // netmc cancel JOB: with the admin token, any job; otherwise the server refuses and says why.

@@ -2,7 +2,8 @@
 include(CMakePackageConfigHelpers)
 
 # The programs.
-install(TARGETS netmc netmc-server netmc-axis RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+install(TARGETS netmc netmc-server netmc-axis netmc-drive-emulator RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
+  COMPONENT runtime)
 
 # The pure libraries and their headers: a project that links netmc::control needs Eigen, and
 # neither Fast DDS nor protobuf.
@@ -59,6 +60,9 @@ add_custom_target(netmc_example_specs ALL DEPENDS ${NETMC_EXAMPLE_SPECS}/seed001
 install(DIRECTORY ${NETMC_EXAMPLE_SPECS}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/specs COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/server/dds/profiles/udp_only.xml
   DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/dds-profiles COMPONENT runtime)
+# The default Modbus register map: what a drive's own map file starts from.
+install(FILES ${PROJECT_SOURCE_DIR}/server/drive/modbus/default-map.json
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/drive-maps COMPONENT runtime)
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/make-lab-pki.sh DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR}
   COMPONENT runtime)

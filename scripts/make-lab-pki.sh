@@ -141,10 +141,10 @@ XML
   for s in "${servers[@]}"; do
     issue "$s"
     # The per-axis topics live in the axes' partitions, the others in the default one.
-    grant "$s" "$(rule "netmc/v2/lockstep/setpoint netmc/v2/realtime/setpoint" \
-      "netmc/v2/lockstep/feedback netmc/v2/realtime/feedback netmc/v2/axis_event" "netmc.axis.*" "netmc.axis.*")
-$(rule "netmc/v2/job_control netmc/v2/clock_probe netmc/v2/iteration_log" \
-      "netmc/v2/node_status netmc/v2/clock_reply")"
+    grant "$s" "$(rule "netmc/v3/lockstep/setpoint netmc/v3/realtime/setpoint" \
+      "netmc/v3/lockstep/feedback netmc/v3/realtime/feedback netmc/v3/axis_event" "netmc.axis.*" "netmc.axis.*")
+$(rule "netmc/v3/job_control netmc/v3/clock_probe netmc/v3/iteration_log" \
+      "netmc/v3/node_status netmc/v3/clock_reply")"
   done
   for spec in "${nodes[@]}"; do
     node=${spec%%:*}
@@ -155,13 +155,13 @@ $(rule "netmc/v2/job_control netmc/v2/clock_probe netmc/v2/iteration_log" \
     for axis in ${axes//,/ }; do name_ok "$axis"; partitions+=" netmc.axis.$axis"; done
     # Feedback and events only in its axes' partitions, their setpoints; its status and clock
     # replies, job control and probes in the default partition.
-    grant "$node" "$(rule "netmc/v2/lockstep/feedback netmc/v2/realtime/feedback netmc/v2/axis_event" \
-      "netmc/v2/lockstep/setpoint netmc/v2/realtime/setpoint" "$partitions" "$partitions")
-$(rule "netmc/v2/node_status netmc/v2/clock_reply" "netmc/v2/job_control netmc/v2/clock_probe netmc/v2/node_status")"
+    grant "$node" "$(rule "netmc/v3/lockstep/feedback netmc/v3/realtime/feedback netmc/v3/axis_event" \
+      "netmc/v3/lockstep/setpoint netmc/v3/realtime/setpoint" "$partitions" "$partitions")
+$(rule "netmc/v3/node_status netmc/v3/clock_reply" "netmc/v3/job_control netmc/v3/clock_probe netmc/v3/node_status")"
   done
   for r in "${readers[@]}"; do
     issue "$r"
-    grant "$r" "$(rule "" "netmc/v2/iteration_log netmc/v2/node_status")"
+    grant "$r" "$(rule "" "netmc/v3/iteration_log netmc/v3/node_status")"
   done
   echo '  </permissions>'
   echo '</dds>'

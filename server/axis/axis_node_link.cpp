@@ -114,12 +114,47 @@ bool AxisNodeLink::authentic(const eprosima::fastrtps::rtps::GuidPrefix_t& sende
   return false;
 }
 
+bool AxisNodeLink::obeys(const eprosima::fastrtps::rtps::GuidPrefix_t& sender) {
+  if (config_.server_name.empty()) return true;
+  const std::string key = dds::prefix_text(sender);
+  {
+    std::lock_guard lock(mutex_);
+    if (const auto it = obeyed_.find(key); it != obeyed_.end()) return it->second;
+  }
+  const auto identity = context_.participant_identity(sender);
+  if (!identity) return false;  // not discovered yet: asked again with its next sample
+  // Under DDS Security the certificate must name the server too (make-lab-pki.sh issues
+  // CN=NAME); without it the name is the participant's own word.
+  const std::string& subject = identity->certificate_subject;
+  const std::string cn = "CN=" + config_.server_name;
+  const std::size_t at = subject.find(cn);
+  const bool certified = subject.empty() || (at != std::string::npos && (at + cn.size() == subject.size() ||
+                                                                         subject[at + cn.size()] == ',' ||
+                                                                         subject[at + cn.size()] == '/'));
+  const bool verdict = identity->name == config_.server_name && certified;
+  constexpr std::size_t kMaxVerdicts = 256;
+  std::lock_guard lock(mutex_);
+  if (obeyed_.size() >= kMaxVerdicts) obeyed_.clear();
+  if (!verdict) {
+    spdlog::warn("participant {} ('{}'{}) is ignored: this node obeys server '{}' only (--server-name)", key,
+                 identity->name.substr(0, 64), subject.empty() ? "" : ", certificate " + subject.substr(0, 96),
+                 config_.server_name);
+  }
+  obeyed_[key] = verdict;
+  return verdict;
+}
+
 std::optional<netmc::dds::JobControl> AxisNodeLink::take_control() {
   while (auto control = control_.try_take()) {
     if (!hosts(control->axis())) continue;  // another node's: not looked at
-    if (authentic(control_.last_sender(), control->server(), "job control", control->axis())) return control;
+    if (!authentic(control_.last_sender(), control->server(), "job control", control->axis())) continue;
+    if (obeys(control_.last_sender())) return control;
   }
   return std::nullopt;
+}
+
+bool AxisNodeLink::reset_request(const netmc::dds::JobControl& control) const {
+  return control.kind() == netmc::dds::CONTROL_FAULT_RESET && hosts(control.axis());
 }
 
 std::optional<netmc::dds::Setpoint> AxisNodeLink::take_setpoint() {
@@ -164,10 +199,26 @@ void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::stri
     std::string faults;
     for (const auto& [axis, reason] : faults_) faults += (faults.empty() ? "" : "; ") + axis + ": " + reason;
     status.health(faults.empty() ? health : netmc::dds::NODE_FAULT);
-    std::string said = faults.empty() ? detail : faults + "; reset on the axis's host (SIGUSR1)";
+    std::string said = faults.empty() ? detail : faults + "; reset with netmc reset (or SIGUSR1 on the axis's host)";
     if (const auto forged = forged_.load(); forged > 0) said += "; " + std::to_string(forged) + " forged samples dropped";
     status.detail(said.substr(0, 255));
+    for (const auto& axis : config_.axes) {
+      netmc::dds::AxisDriveStatus entry;
+      entry.axis(axis);
+      const auto& drive = config_.drives.at(axis);
+      entry.drive((drive.hardware ? drive.hardware->describe() : drive.spec.describe()).substr(0, 128));
+      const auto report = drive_reports_.find(axis);
+      const AxisDriveReport seen = report == drive_reports_.end() ? AxisDriveReport{} : report->second;
+      entry.state(drive::power_state_name(seen.state));
+      entry.statusword(seen.statusword);
+      entry.error_code(seen.error_code);
+      entry.fault_latched(faults_.count(axis) > 0);
+      if (const auto last = last_faults_.find(axis); last != last_faults_.end()) entry.last_fault(last->second.substr(0, 255));
+      entry.limits(drive.limits.describe().substr(0, 255));
+      status.drives().push_back(entry);
+    }
   }
+  status.server_name(config_.server_name);
   status.participant(context_.identity());
   {
     std::lock_guard lock(mutex_);
@@ -202,7 +253,9 @@ std::string AxisNodeLink::admit(const netmc::dds::JobControl& control) {
   std::lock_guard lock(mutex_);
   const auto now = std::chrono::steady_clock::now();
   Hold& hold = holds_[control.axis()];  // only hosted axes reach here
-  const bool new_job = control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty();
+  const bool new_job = (control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION ||
+                        control.kind() == netmc::dds::CONTROL_PREPARE_ITERATION) &&
+                       !control.job_spec().empty();
   if (held(hold, now) && hold.server == control.server() && hold.job_id == control.job_id()) {
     hold.last_contact = now;
     return "";
@@ -237,9 +290,11 @@ void AxisNodeLink::report_fault(const std::string& axis, JobAxis& job_axis, cons
   {
     std::lock_guard lock(mutex_);
     faults_.emplace(axis, reason);
+    last_faults_[axis] = reason;
   }
-  spdlog::error("axis {} FAULT (job {}): {}; command held at zero until reset on this host (SIGUSR1)", axis,
-                job_axis.job_id, reason);
+  spdlog::error("axis {} FAULT (job {}): {}; quick stop, then Fault until the operator resets it (netmc reset, "
+                "or SIGUSR1 on this host)",
+                axis, job_axis.job_id, reason);
   netmc::dds::AxisEvent event;
   event.axis(axis);
   event.server(server);
@@ -251,14 +306,25 @@ void AxisNodeLink::report_fault(const std::string& axis, JobAxis& job_axis, cons
   publish_status(netmc::dds::NODE_FAULT, "");
 }
 
-void AxisNodeLink::reset_faults() {
+std::vector<std::string> AxisNodeLink::reset_faults(const std::vector<std::string>& axes) {
+  std::vector<std::string> reset;
   {
     std::lock_guard lock(mutex_);
-    if (faults_.empty()) return;
-    faults_.clear();
+    for (auto it = faults_.begin(); it != faults_.end();) {
+      if (axes.empty() || std::find(axes.begin(), axes.end(), it->first) != axes.end()) {
+        reset.push_back(it->first);
+        it = faults_.erase(it);
+      } else {
+        ++it;
+      }
+    }
   }
-  spdlog::info("faults reset by the operator");
+  if (reset.empty()) return reset;
+  std::string names;
+  for (const auto& axis : reset) names += (names.empty() ? "" : ",") + axis;
+  spdlog::info("faults of axes {} reset by the operator", names);
   publish_status(netmc::dds::NODE_IDLE, "ready (faults reset)");
+  return reset;
 }
 
 std::atomic<bool>& fault_reset_requested() {
@@ -266,8 +332,9 @@ std::atomic<bool>& fault_reset_requested() {
   return requested;
 }
 
-void AxisNodeLink::poll_fault_reset() {
-  if (fault_reset_requested().exchange(false)) reset_faults();
+std::vector<std::string> AxisNodeLink::poll_fault_reset() {
+  if (!fault_reset_requested().exchange(false)) return {};
+  return reset_faults();
 }
 
 bool AxisNodeLink::faulted() const {
@@ -275,12 +342,23 @@ bool AxisNodeLink::faulted() const {
   return !faults_.empty();
 }
 
+bool AxisNodeLink::faulted(const std::string& axis) const {
+  std::lock_guard lock(mutex_);
+  return faults_.count(axis) > 0;
+}
+
+void AxisNodeLink::report_drive(const std::string& axis, drive::PowerState state,
+                                const drive::DriveFeedback& feedback) {
+  std::lock_guard lock(mutex_);
+  drive_reports_[axis] = {state, feedback.statusword, feedback.error_code};
+}
+
 JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
   {
     std::lock_guard lock(mutex_);
     if (const auto it = faults_.find(begin.axis()); it != faults_.end()) {
       throw std::runtime_error("axis " + begin.axis() + " is in fault (" + it->second +
-                               "); its operator resets it on the axis's host (SIGUSR1 to netmc-axis, or a restart)");
+                               "); its operator resets it: netmc reset " + config_.node + " (or SIGUSR1 on its host)");
     }
   }
   // The server must read this node's feedback before the first sample leaves: wait for its
@@ -299,16 +377,15 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
     throw std::invalid_argument("the job needs plant '" + spec.plant().substr(0, 64) + "', this node hosts '" +
                                 config_.plant + "'");
   }
-  const sim::ContourJob job = job::build_contour_job(spec);
+  const AxisDrive& axis_drive = config_.drives.at(begin.axis());
+  const sim::ContourJob job = job::build_contour_job(with_node_overrides(spec, begin.axis(), axis_drive));
   const auto job_axes = job::axis_names(spec);
   const auto it = std::find(job_axes.begin(), job_axes.end(), begin.axis());
   if (it == job_axes.end()) throw std::invalid_argument("axis " + begin.axis() + " is not an axis of the job");
   const auto index = static_cast<std::size_t>(it - job_axes.begin());
   JobAxis axis;
-  const auto limits = config_.limits.find(begin.axis());
-  axis.endpoint = std::make_unique<sim::AxisEndpoint>(sim::AxisEndpoint::simulated_drive(job, index), job, index,
-                                                      limits == config_.limits.end() ? drive::AxisLimits{}
-                                                                                     : limits->second);
+  axis.endpoint = std::make_unique<sim::AxisEndpoint>(job_drive(axis_drive, job, index, config_.drive_settings), job,
+                                                      index, axis_drive.limits);
   axis.job_id = begin.job_id();
   axis.cycles = job.cycles();
   axis.sample_period_s = job.sample_period_s;

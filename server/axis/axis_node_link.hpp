@@ -18,19 +18,42 @@
 #include "dds_types.h"
 #include "server/dds/dds_context.hpp"
 #include "server/dds/time_base.hpp"
+#include "server/axis/axis_drives.hpp"
+#include "server/drive/cia402.hpp"
 #include "server/sim/axis_endpoint.hpp"
 
 namespace netmc::axis {
 
+// How a node brings a hardware drive to an iteration's start (a simulation is restarted there).
+struct PositioningSettings {
+  double velocity_m_s = 0.05;
+  double acceleration_m_s2 = 0.5;
+  double tolerance_m = 1e-6;        // at rest within this of the start
+  double settle_velocity_m_s = 1e-4;
+  std::chrono::milliseconds timeout{20000};  // beyond the move's own duration
+};
+
 struct AxisNodeConfig {
   std::string node;                    // unique node name
   std::vector<std::string> axes;       // axis names this node hosts (unique on the domain)
-  std::string plant = "seed001";       // the plant model this node hosts
+  std::string plant = "seed001";       // the plant model its jobs name (its simulated drives run it)
   std::string clock = "lockstep";
   dds::TimeBase time_base = dds::TimeBase::monotonic;
   // How long a holding server may stay silent before another may take the axes.
   std::chrono::milliseconds hold_lease{10000};
-  std::map<std::string, drive::AxisLimits> limits;  // the operator's, by axis (an axis not here has none)
+  std::map<std::string, AxisDrive> drives;  // by axis: the drive and the limits it runs under
+  DriveSettings drive_settings;
+  PositioningSettings positioning;
+  // The only server this node obeys (its DDS participant name, --dds-name; under DDS Security also
+  // its certificate's CN). Empty: any server.
+  std::string server_name;
+};
+
+// An axis's drive as the node last saw it, for its status.
+struct AxisDriveReport {
+  drive::PowerState state = drive::PowerState::not_ready_to_switch_on;
+  std::uint16_t statusword = 0;
+  std::uint16_t error_code = 0;
 };
 
 // The node's name or one of its axes belongs to a live node already.
@@ -87,18 +110,26 @@ class AxisNodeLink {
   bool from_holder(const std::string& axis, const std::string& server, std::uint64_t job_id);
   void release(const std::string& axis, const std::string& server, std::uint64_t job_id);
 
-  // From the BEGIN_ITERATION of iteration 1: the job's axis, built from its spec. Throws for an
-  // axis in fault (named with its reason) or a spec this node cannot run.
+  // From the message that carries the job's spec (BEGIN_ITERATION of iteration 1 in lockstep,
+  // PREPARE_ITERATION in realtime): the job's axis, built from its spec, on the axis's drive.
+  // Throws for an axis in fault (named with its reason) or a spec this node cannot run.
   JobAxis start_job(const netmc::dds::JobControl& begin);
 
-  // Faults latch per axis until the operator resets them on this host (SIGUSR1 to netmc-axis,
-  // or a restart): a server cannot clear them. report_fault latches the endpoint's fault (once
-  // per job axis), tells the job's server (AXIS_FAULT) and the node's log; the status shows it.
+  // Faults latch per axis until the operator resets them: `netmc reset` through a server this
+  // node obeys, SIGUSR1 to netmc-axis, or a restart. report_fault latches the endpoint's fault
+  // (once per job axis), tells the job's server (AXIS_FAULT) and the node's log; the status shows
+  // it. reset_faults clears the latched faults of `axes` (all if empty) and returns them.
   void report_fault(const std::string& axis, JobAxis& job_axis, const std::string& server, std::uint32_t iteration);
-  void reset_faults();
+  std::vector<std::string> reset_faults(const std::vector<std::string>& axes = {});
   bool faulted() const;
-  // Called by the node's loop: resets the faults if the operator asked (fault_reset_requested).
-  void poll_fault_reset();
+  bool faulted(const std::string& axis) const;
+  // Called by the node's loop: the axes whose faults the operator reset by signal
+  // (fault_reset_requested), all of them, or none.
+  std::vector<std::string> poll_fault_reset();
+  // What the node's loop last saw of an axis's drive: the status carries it.
+  void report_drive(const std::string& axis, drive::PowerState state, const drive::DriveFeedback& feedback);
+  // Whether `control` asks for a fault reset that this node takes (from a server it obeys).
+  bool reset_request(const netmc::dds::JobControl& control) const;
 
   // The node's own clock (its --time-base).
   double now_s() const { return dds::time_base_now_s(config_.time_base); }
@@ -132,9 +163,16 @@ class AxisNodeLink {
   dds::SampleReader<netmc::dds::Setpoint> setpoints_;
   dds::SampleReader<netmc::dds::ClockProbe> probes_;
 
+  // True if --server-name lets the participant `sender` command this node; logs a refusal once
+  // per participant.
+  bool obeys(const eprosima::fastrtps::rtps::GuidPrefix_t& sender);
+
   mutable std::mutex mutex_;  // status, holds and faults: the probe thread and the node's thread
   std::map<std::string, Hold> holds_;  // by axis
   std::map<std::string, std::string> faults_;  // by axis: the reason
+  std::map<std::string, std::string> last_faults_;  // by axis: the latest reason, kept after a reset
+  std::map<std::string, AxisDriveReport> drive_reports_;  // by axis
+  std::map<std::string, bool> obeyed_;  // --server-name's verdict by participant (bounded)
 
   std::atomic<std::uint64_t> forged_{0};
   std::set<std::string> forgers_logged_;  // "participant kind", bounded: kMaxForgersLogged

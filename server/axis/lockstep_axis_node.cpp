@@ -19,7 +19,7 @@ void LockstepAxisNode::serve(const std::atomic<bool>& stop) {
   waitset.attach_condition(link_.setpoints().condition());
   auto last_status = std::chrono::steady_clock::now();
   while (!stop.load()) {
-    link_.poll_fault_reset();
+    reset_faults(link_.poll_fault_reset());
     while (auto control = link_.take_control()) handle(*control);
     while (auto setpoint = link_.take_setpoint()) handle(*setpoint);
     if (std::chrono::steady_clock::now() - last_status >= kStatusPeriod) {
@@ -33,13 +33,57 @@ void LockstepAxisNode::serve(const std::atomic<bool>& stop) {
 
 void LockstepAxisNode::publish_status() {
   bool running = false;
-  for (const auto& [name, axis] : axes_) running = running || axis.endpoint != nullptr;
+  for (const auto& [name, axis] : axes_) {
+    running = running || axis.endpoint != nullptr;
+    report_drive(name);
+  }
   link_.publish_status(running ? netmc::dds::NODE_RUNNING : netmc::dds::NODE_IDLE, running ? "running a job" : "ready");
+}
+
+void LockstepAxisNode::report_drive(const std::string& axis_name) {
+  const JobAxis& axis = axes_.at(axis_name);
+  if (axis.endpoint) {
+    link_.report_drive(axis_name, axis.endpoint->supervised().power_state(), axis.endpoint->supervised().reading());
+    return;
+  }
+  const auto drive = drives_.find(axis_name);
+  if (drive == drives_.end()) return;
+  const drive::DriveFeedback feedback = drive->second->read();
+  auto state = drive::decode_statusword(feedback.statusword).value_or(drive::PowerState::not_ready_to_switch_on);
+  if (link_.faulted(axis_name)) state = drive::PowerState::fault;
+  link_.report_drive(axis_name, state, feedback);
+}
+
+void LockstepAxisNode::report_fault(const std::string& axis_name, JobAxis& axis, const std::string& server,
+                                    std::uint32_t iteration) {
+  if (!axis.endpoint || !axis.endpoint->fault() || axis.fault_reported) return;
+  link_.report_fault(axis_name, axis, server, iteration);
+  // Virtual time stops with the job: the drive's reaction to the trip ends now.
+  axis.endpoint->supervised().finish_reaction();
+  report_drive(axis_name);
+}
+
+void LockstepAxisNode::reset_faults(const std::vector<std::string>& axes) {
+  for (const auto& name : axes) {
+    JobAxis& axis = axes_.at(name);
+    if (axis.endpoint) {
+      axis.endpoint->supervised().clear_fault();
+    } else if (const auto drive = drives_.find(name); drive != drives_.end()) {
+      drive::reset_drive_fault(*drive->second);
+    }
+    report_drive(name);
+  }
 }
 
 void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
   const auto owned = axes_.find(control.axis());
   if (owned == axes_.end()) return;  // another node's axis
+  if (link_.reset_request(control)) {
+    link_.reset_faults({control.axis()});
+    reset_faults({control.axis()});
+    return;
+  }
+  if (control.kind() == netmc::dds::CONTROL_PREPARE_ITERATION) return;  // realtime servers only
   if (const std::string why = link_.admit(control); !why.empty()) {
     if (control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty()) {
       link_.refuse(control, netmc::dds::AXIS_REFUSED, why);
@@ -58,6 +102,7 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
       link_.publish_status(netmc::dds::NODE_FAULT, "job " + std::to_string(control.job_id()) + ": " + error.what());
       return;
     }
+    drives_[control.axis()] = axis.endpoint->supervised().shared_drive();
   }
   if (!axis.endpoint || axis.job_id != control.job_id()) return;
 
@@ -76,9 +121,15 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
       feedback.kind(netmc::dds::FEEDBACK_FINAL);
       break;
     case netmc::dds::CONTROL_END_JOB:
+      if (axis.endpoint->supervised().power_state() == drive::PowerState::operation_enabled) {
+        axis.endpoint->supervised().drive().write_controlword(drive::controlword::shutdown);
+      }
       axis.endpoint.reset();
       link_.release(control.axis(), control.server(), control.job_id());
       publish_status();  // at once: a server deciding on these axes must not see a stale hold
+      return;
+    case netmc::dds::CONTROL_PREPARE_ITERATION:
+    case netmc::dds::CONTROL_FAULT_RESET:
       return;
   }
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
@@ -113,7 +164,7 @@ void LockstepAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   }
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
   feedback.stale_setpoints(axis.endpoint->stale_setpoints());
-  link_.report_fault(setpoint.axis(), axis, setpoint.server(), setpoint.iteration());  // before the sample
+  report_fault(setpoint.axis(), axis, setpoint.server(), setpoint.iteration());  // before the sample
   link_.publish(feedback);
 }
 

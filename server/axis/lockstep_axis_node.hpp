@@ -1,7 +1,8 @@
 #pragma once
 // netmc-axis in lockstep mode: virtual time advances one period per setpoint. Each owned axis
-// runs the same AxisEndpoint as the in-process simulation (plant, sensor, actuator, downlink
-// netsim), so a distributed lockstep run reproduces `netmc sim` bit for bit.
+// runs the same AxisEndpoint as the in-process simulation (netmc's simulated drive under its
+// supervision, sensor, downlink netsim), so a distributed lockstep run reproduces `netmc sim` bit
+// for bit. Only simulated drives run in virtual time: hardware needs --clock realtime.
 
 #include <atomic>
 #include <map>
@@ -21,9 +22,14 @@ class LockstepAxisNode {
   void handle(const netmc::dds::JobControl& control);
   void publish_status();
   void handle(const netmc::dds::Setpoint& setpoint);
+  void reset_faults(const std::vector<std::string>& axes);
+  void report_fault(const std::string& axis_name, JobAxis& axis, const std::string& server, std::uint32_t iteration);
+  void report_drive(const std::string& axis_name);
 
   AxisNodeLink link_;
   std::map<std::string, JobAxis> axes_;
+  // Each axis's simulated drive of its last job: what its status shows between jobs.
+  std::map<std::string, std::shared_ptr<drive::Drive>> drives_;
 };
 
 }  // namespace netmc::axis

@@ -1,5 +1,6 @@
-// netmc-axis: one remote axis node (one or several axes) hosting a simulated plant. It applies
-// the setpoints of the netmc-server that holds it and publishes feedback over DDS.
+// netmc-axis: one remote axis node (one or several axes), each on a drive: netmc's simulated
+// drive of a plant, a Modbus TCP drive or a lab's plugin. It applies the setpoints of the
+// netmc-server that holds it, publishes feedback over DDS and enforces its own limits.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -15,6 +16,8 @@
 #include "server/dds/dds_options_cli.hpp"
 #include "server/job/job_builder.hpp"
 #include "plant/plant_catalog.hpp"
+#include "server/axis/axis_drives.hpp"
+#include "server/drive/drive_spec.hpp"
 #include "server/log/process_log.hpp"
 #include "server/realtime/realtime_options_cli.hpp"
 
@@ -45,7 +48,7 @@ int serve(Node& node) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"netmc-axis: a remote axis node hosting a simulated plant, driven over DDS"};
+  CLI::App app{"netmc-axis: a remote axis node on simulated or real drives, driven over DDS"};
   app.set_version_flag("--version", std::string("netmc-axis ") + NETMC_VERSION);
   netmc::axis::AxisNodeConfig config;
   std::string axes = "x,y";
@@ -59,23 +62,58 @@ int main(int argc, char** argv) {
       ->envname("NETMC_AXES");
   std::string plants;
   for (const auto& name : netmc::plant::plant_names()) plants += (plants.empty() ? "" : ", ") + name;
-  app.add_option("--plant", config.plant, "Plant model: " + plants)->envname("NETMC_PLANT");
+  std::string plant_flag;
+  app.add_option("--plant", plant_flag,
+                 "The plant model its jobs name (" + plants +
+                     "): its simulated drives run it; a hardware drive is declared as it (default: the plant of "
+                     "--drive sim:PLANT, else seed001)")
+      ->envname("NETMC_PLANT");
+  std::vector<std::string> drive_flags;
+  app.add_option("--drive", drive_flags,
+                 "The drive of every axis, or AXIS=DRIVE for one (repeatable): sim:PLANT[:KEY=VALUE,...] (default: "
+                 "netmc's simulated drive of --plant) | modbus-tcp:HOST:PORT[,unit=N,map=FILE,timeout=DURATION] | "
+                 "plugin:PATH.so[:KEY=VALUE,...]. A drive that is not simulated needs --command-limit, "
+                 "--position-window and --velocity-limit (or its map file's limits)")
+      ->envname("NETMC_DRIVE")
+      ->take_all();
+  app.add_option("--server-name", config.server_name,
+                 "Obey only the server whose DDS participant name is NAME (netmc-server --dds-name; under "
+                 "--security its certificate must name it too); default: any server")
+      ->envname("NETMC_SERVER_NAME");
+  app.add_option("--quick-stop-deceleration", config.drive_settings.quick_stop_deceleration_m_s2,
+                 "Deceleration (m/s^2) of the drive's quick stop after a trip or the watchdog (CiA 402 0x6085)")
+      ->check(CLI::PositiveNumber);
+  auto& positioning = config.positioning;
+  app.add_option("--positioning-velocity", positioning.velocity_m_s,
+                 "Hardware drives: speed (m/s) of the moves to an iteration's start")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--positioning-acceleration", positioning.acceleration_m_s2,
+                 "Hardware drives: acceleration (m/s^2) of those moves and of the stop at a job's end")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--positioning-tolerance", positioning.tolerance_m,
+                 "Hardware drives: at rest within this (m) of the start before an iteration begins")
+      ->check(CLI::PositiveNumber);
+  int positioning_timeout_ms = 20000;
+  app.add_option("--positioning-timeout", positioning_timeout_ms,
+                 "Hardware drives: milliseconds beyond a move's own duration to be at rest at the start")
+      ->check(CLI::Range(100, 600000));
   int watchdog_ms = 50;
   app.add_option("--clock", clock,
                  "lockstep (virtual time, deterministic) or realtime (wall clock)")
       ->check(CLI::IsMember({"lockstep", "realtime"}))
       ->envname("NETMC_CLOCK");
   app.add_option("--watchdog", watchdog_ms,
-                 "Realtime: milliseconds without a setpoint before the axis holds (command 0)")
+                 "Realtime: milliseconds without a setpoint before the axis quick-stops (CiA 402 Quick stop active)")
       ->check(CLI::Range(1, 60000));
   // The operator's limits (SI units): a value for every axis of the node, or AXIS=VALUE entries.
   netmc::axis::AxisLimitFlags limit_flags;
   app.add_option("--command-limit", limit_flags.command,
                  "Largest |command| the drive takes, in the plant's input unit; a larger one trips the axis "
-                 "(U for every axis, or AXIS=U entries: 8,stage1.y=5)");
+                 "(U for every axis, or AXIS=U entries: 8,stage1.y=5; default for a simulated drive: its plant's "
+                 "rated input)");
   app.add_option("--position-window", limit_flags.position_window,
                  "Travel MIN:MAX in metres; leaving it trips the axis (e.g. -0.05:0.25, or per axis: "
-                 "x=-0.05:0.25,y=0:0.45)");
+                 "x=-0.05:0.25,y=0:0.45; default for a simulated drive: its plant's travel)");
   app.add_option("--velocity-limit", limit_flags.velocity,
                  "Largest |velocity| in m/s; beyond it trips the axis (V, or AXIS=V entries)");
   app.add_option("--slew-limit", limit_flags.slew,
@@ -96,8 +134,29 @@ int main(int argc, char** argv) {
   }
   try {
     config.axes = netmc::axis::parse_axis_list(axes);
-    config.limits = netmc::axis::parse_axis_limits(limit_flags, config.axes);
+    const auto flag_limits = netmc::axis::parse_axis_limits(limit_flags, config.axes);
     netmc::job::check_name(config.node, "--node");
+    if (!config.server_name.empty()) netmc::job::check_name(config.server_name, "--server-name");
+    config.positioning.timeout = std::chrono::milliseconds(positioning_timeout_ms);
+    // The plant: --plant, else the one a simulated drive names.
+    std::string plant = plant_flag;
+    for (const auto& value : drive_flags) {
+      const std::size_t equals = value.find('=');
+      const std::string spec = equals != std::string::npos && value.substr(0, equals).find(':') == std::string::npos
+                                   ? value.substr(equals + 1)
+                                   : value;
+      if (plant.empty() && spec.rfind("sim:", 0) == 0) plant = netmc::drive::parse_drive_spec(spec).plant();
+    }
+    if (plant.empty()) plant = "seed001";
+    netmc::plant::plant_rating(plant);  // a known plant, or the catalog's message
+    const auto drive_specs = netmc::drive::parse_drive_flags(drive_flags, config.axes, plant);
+    config.plant = netmc::axis::node_plant(drive_specs, plant);
+    bool hardware = false;
+    for (const auto& [axis, spec] : drive_specs) hardware = hardware || spec.kind != netmc::drive::DriveSpec::Kind::simulated;
+    if (hardware && clock != "realtime") {
+      throw std::invalid_argument("--drive: a drive that is not simulated runs on its own time: start the node with "
+                                  "--clock realtime (lockstep is virtual time, for simulated drives)");
+    }
     netmc::log::init("netmc-axis " + config.node);
     config.clock = clock;
     dds.name = config.node;
@@ -106,14 +165,27 @@ int main(int argc, char** argv) {
     for (const auto& fallback : scheduling_outcome.fallbacks) {
       spdlog::warn("{}; running without it", fallback);
     }
+    // Hardware is opened before the node joins the domain: one that cannot be reached, or whose
+    // limits are missing, refuses the start.
+    config.drives = netmc::axis::open_axis_drives(drive_specs, flag_limits, config.drive_settings);
+    std::map<std::string, netmc::drive::AxisLimits> limits;
+    std::string drives_text;
+    for (const auto& axis : config.axes) {
+      limits[axis] = config.drives.at(axis).limits;
+      const auto& entry = config.drives.at(axis);
+      drives_text += (drives_text.empty() ? "" : ", ") + axis + " " +
+                     (entry.hardware ? entry.hardware->describe() : entry.spec.describe());
+    }
     netmc::dds::DdsContext context(dds);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     std::signal(SIGUSR1, on_reset);
-    spdlog::info("netmc {}, axes {}, plant {}, limits {}, clock {} ({}), DDS domain {} ({}), participant {}, {}",
-                 NETMC_VERSION, axes, config.plant, netmc::axis::describe_axis_limits(config.limits, config.axes), clock,
+    spdlog::info("netmc {}, axes {}, plant {}, drives {}, limits {}, clock {} ({}), DDS domain {} ({}), "
+                 "participant {}, {}{}",
+                 NETMC_VERSION, axes, config.plant, drives_text, netmc::axis::describe_axis_limits(limits, config.axes), clock,
                  netmc::dds::time_base_name(config.time_base), dds.domain_id, context.describe_transport(),
-                 context.identity(), scheduling_outcome.describe());
+                 context.identity(), scheduling_outcome.describe(),
+                 config.server_name.empty() ? "" : ", obeys server " + config.server_name + " only");
     if (clock == "realtime") {
       netmc::axis::RealtimeAxisNode node(context, config, std::chrono::milliseconds(watchdog_ms));
       return serve(node);
@@ -121,6 +193,9 @@ int main(int argc, char** argv) {
     netmc::axis::LockstepAxisNode node(context, config);
     return serve(node);
   } catch (const std::invalid_argument& e) {
+    std::cerr << "netmc-axis: error: " << e.what() << "\n";
+    return 2;
+  } catch (const netmc::drive::DriveError& e) {
     std::cerr << "netmc-axis: error: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {

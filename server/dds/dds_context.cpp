@@ -5,6 +5,7 @@
 #include <netinet/in.h>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
@@ -217,6 +218,47 @@ class DdsContext::MatchTracker : public DataWriterListener, public DataReaderLis
   std::map<std::string, int> endpoints_;
 };
 
+// The participants of the domain as discovery announced them: the name each gave itself and,
+// under DDS Security, the subject of the certificate its identity token names (the name is the
+// participant's own word; the certificate is what authentication checked against the lab's CA).
+class DdsContext::ParticipantDirectory : public DomainParticipantListener {
+ public:
+  void on_participant_discovery(DomainParticipant*, eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
+    using Status = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERY_STATUS;
+    const std::string key = prefix_text(info.info.m_guid.guidPrefix);
+    std::lock_guard lock(mutex_);
+    if (info.status == Status::REMOVED_PARTICIPANT || info.status == Status::DROPPED_PARTICIPANT) {
+      known_.erase(key);
+      return;
+    }
+    if (known_.size() >= static_cast<std::size_t>(kMaxInstances) && !known_.count(key)) return;
+    ParticipantIdentity identity;
+    identity.name = std::string(info.info.m_participantName.c_str()).substr(0, 255);
+#if HAVE_SECURITY
+    for (const auto& property : info.info.identity_token_.properties()) {
+      if (property.name() == "dds.cert.sn") identity.certificate_subject = property.value().substr(0, 255);
+    }
+#endif
+    known_[key] = std::move(identity);
+  }
+
+  std::optional<ParticipantIdentity> find(const std::string& prefix) const {
+    std::lock_guard lock(mutex_);
+    const auto it = known_.find(prefix);
+    if (it == known_.end()) return std::nullopt;
+    return it->second;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::string, ParticipantIdentity> known_;
+};
+
+std::optional<ParticipantIdentity> DdsContext::participant_identity(
+    const eprosima::fastrtps::rtps::GuidPrefix_t& prefix) const {
+  return participants_->find(prefix_text(prefix));
+}
+
 namespace {
 
 // Fast DDS's built-in security plugins (PKI-DH authentication, access control with signed
@@ -244,7 +286,7 @@ void add_security_properties(DomainParticipantQos& qos, const std::string& direc
 
 }  // namespace
 
-DdsContext::DdsContext(const DdsOptions& options) {
+DdsContext::DdsContext(const DdsOptions& options) : participants_(std::make_unique<ParticipantDirectory>()) {
   auto* factory = DomainParticipantFactory::get_instance();
   if (!options.xml_profile_file.empty() && !std::filesystem::is_regular_file(options.xml_profile_file)) {
     throw std::invalid_argument("--dds-profile: no such file '" + options.xml_profile_file + "'");
@@ -258,8 +300,8 @@ DdsContext::DdsContext(const DdsOptions& options) {
   const char* env_profiles = std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE");
   xml_loaded_ = !options.xml_profile_file.empty() || (env_profiles && *env_profiles);
   if (!options.participant_profile.empty()) {
-    participant_ = factory->create_participant_with_profile(options.domain_id,
-                                                            options.participant_profile);
+    participant_ = factory->create_participant_with_profile(options.domain_id, options.participant_profile,
+                                                            participants_.get(), StatusMask::none());
     transport_description_ = "XML profile " + options.participant_profile;
   } else {
     // The XML default participant profile, if any, is the starting point (Fast DDS reads the
@@ -326,7 +368,8 @@ DdsContext::DdsContext(const DdsOptions& options) {
       add_security_properties(qos, options.security_dir, options.name);
       transport_description_ += ", DDS Security as " + options.name;
     }
-    participant_ = factory->create_participant(options.domain_id, qos);
+    // The listener sees discovery only (StatusMask::none: no entity's data falls back to it).
+    participant_ = factory->create_participant(options.domain_id, qos, participants_.get(), StatusMask::none());
   }
   if (!participant_) {
     throw std::runtime_error("dds: cannot create a participant in domain " + std::to_string(options.domain_id) +

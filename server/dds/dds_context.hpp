@@ -67,6 +67,12 @@ inline constexpr int kMaxLoopbackParticipants = 64;
 // Throws std::invalid_argument naming the flag for an unknown name or a malformed address.
 std::vector<std::string> resolve_interfaces(const std::vector<std::string>& interfaces);
 
+// What a participant said of itself in discovery.
+struct ParticipantIdentity {
+  std::string name;                 // its participant name (netmc: --dds-name, a node's --node)
+  std::string certificate_subject;  // DDS Security: its certificate's subject ("CN=..."); "" without
+};
+
 class DdsContext {
  public:
   explicit DdsContext(const DdsOptions& options);
@@ -93,6 +99,8 @@ class DdsContext {
   std::string describe_transport() const { return transport_description_; }
   // This participant's GUID prefix as 24 hex digits: the identity of a server or a node.
   std::string identity() const { return identity_; }
+  // The participant `prefix` as discovery announced it; nullopt for one not (or no longer) known.
+  std::optional<ParticipantIdentity> participant_identity(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix) const;
 
   // True once `endpoint` (a writer or reader made by this context) has matched an endpoint of
   // every participant in `participants` (GUID prefixes as identity() prints them). A restarted
@@ -106,6 +114,8 @@ class DdsContext {
 
  private:
   class MatchTracker;
+  class ParticipantDirectory;
+  std::unique_ptr<ParticipantDirectory> participants_;  // the participant's listener
   eprosima::fastdds::dds::Publisher* publisher_for(const std::string& partition);
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;

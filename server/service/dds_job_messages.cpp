@@ -26,12 +26,19 @@ netmc::dds::JobControl JobPublisher::control(std::size_t axis, std::uint32_t ite
   return c;
 }
 
+void JobPublisher::prepare_iteration(std::size_t axis, std::uint32_t iteration, double start_position_m) {
+  auto c = control(axis, iteration, netmc::dds::CONTROL_PREPARE_ITERATION);
+  c.start_position_m(start_position_m);
+  if (iteration == 1) c.job_spec(spec_bytes_);
+  dds::write_checked(channels_.control, &c);
+}
+
 void JobPublisher::begin_iteration(std::size_t axis, std::uint32_t iteration, double start_position_m,
-                                   double start_time_s) {
+                                   double start_time_s, bool with_spec) {
   auto c = control(axis, iteration, netmc::dds::CONTROL_BEGIN_ITERATION);
   c.start_position_m(start_position_m);
   c.start_time_s(start_time_s);
-  if (iteration == 1) c.job_spec(spec_bytes_);
+  if (with_spec && iteration == 1) c.job_spec(spec_bytes_);
   dds::write_checked(channels_.control, &c);
 }
 
@@ -79,9 +86,10 @@ bool from_axis_node(const JobChannels& channels, std::size_t axis,
 
 namespace {
 
-// True if `event` is an iteration end of this job (handed to `on_ended`); throws on a refusal or fault.
+// True if `event` is an iteration end or a readiness of this job (handed to `on_event`); throws on
+// a refusal or fault.
 bool handle_axis_event(const JobChannels& channels, std::uint64_t job_id, const netmc::dds::AxisEvent& event,
-                       const std::function<void(const netmc::dds::AxisEvent&)>& on_ended) {
+                       const std::function<void(const netmc::dds::AxisEvent&)>& on_event) {
   const std::size_t axis = axis_index(channels, event.axis());
   if (event.server() != channels.server || event.job_id() != job_id || axis >= channels.axes.size() ||
       !from_axis_node(channels, axis, channels.events->last_sender())) {
@@ -93,7 +101,8 @@ bool handle_axis_event(const JobChannels& channels, std::uint64_t job_id, const 
     case netmc::dds::AXIS_FAULT:
       throw JobFailure("axis " + event.axis() + " cannot run the job: " + event.detail());
     case netmc::dds::AXIS_ITERATION_ENDED:
-      if (on_ended) on_ended(event);
+    case netmc::dds::AXIS_READY:
+      if (on_event) on_event(event);
       return true;
   }
   return false;
@@ -102,14 +111,14 @@ bool handle_axis_event(const JobChannels& channels, std::uint64_t job_id, const 
 }  // namespace
 
 void poll_axis_events(const JobChannels& channels, std::uint64_t job_id,
-                      const std::function<void(const netmc::dds::AxisEvent&)>& on_ended) {
-  while (auto event = channels.events->try_take()) handle_axis_event(channels, job_id, *event, on_ended);
+                      const std::function<void(const netmc::dds::AxisEvent&)>& on_event) {
+  while (auto event = channels.events->try_take()) handle_axis_event(channels, job_id, *event, on_event);
 }
 
 bool wait_axis_event(const JobChannels& channels, std::uint64_t job_id, std::chrono::steady_clock::time_point until,
-                     const std::function<void(const netmc::dds::AxisEvent&)>& on_ended) {
+                     const std::function<void(const netmc::dds::AxisEvent&)>& on_event) {
   while (auto event = channels.events->take_until(until)) {
-    if (handle_axis_event(channels, job_id, *event, on_ended)) return true;
+    if (handle_axis_event(channels, job_id, *event, on_event)) return true;
   }
   return false;
 }

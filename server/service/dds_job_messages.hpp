@@ -46,8 +46,11 @@ bool from_axis_node(const JobChannels& channels, std::size_t axis,
 class JobPublisher {
  public:
   JobPublisher(const JobChannels& channels, const netmc::v1::JobSpec& spec, std::uint64_t job_id);
+  // Lockstep: the job's spec travels with iteration 1's BEGIN. Realtime: with iteration 1's
+  // PREPARE, and every iteration begins once its axes said AXIS_READY.
+  void prepare_iteration(std::size_t axis, std::uint32_t iteration, double start_position_m);
   void begin_iteration(std::size_t axis, std::uint32_t iteration, double start_position_m,
-                       double start_time_s);
+                       double start_time_s, bool with_spec);
   void end_iteration(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle);
   void command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle, double command,
                double send_time_s);
@@ -65,13 +68,13 @@ class JobPublisher {
 };
 
 // Takes the axes' events of this server's job `job_id`: throws JobFailure on a refusal or a
-// fault, hands iteration ends to `on_ended`.
+// fault, hands iteration ends and readiness (AXIS_ITERATION_ENDED, AXIS_READY) to `on_event`.
 void poll_axis_events(const JobChannels& channels, std::uint64_t job_id,
-                      const std::function<void(const netmc::dds::AxisEvent&)>& on_ended);
+                      const std::function<void(const netmc::dds::AxisEvent&)>& on_event);
 // Waits until `until` for the next event of this server's job `job_id` and handles it as
 // poll_axis_events does; false if none came.
 bool wait_axis_event(const JobChannels& channels, std::uint64_t job_id, std::chrono::steady_clock::time_point until,
-                     const std::function<void(const netmc::dds::AxisEvent&)>& on_ended);
+                     const std::function<void(const netmc::dds::AxisEvent&)>& on_event);
 // Index of `axis` in channels.axes, or channels.axes.size() if it is not the job's.
 std::size_t axis_index(const JobChannels& channels, const std::string& axis);
 

@@ -131,37 +131,97 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
       auto& reply = *response.mutable_nodes();
       reply.set_server(context_.identity());
       reply.set_expiry_s(std::chrono::duration<double>(nodes_.expiry()).count());
-      for (const auto& record : nodes_.nodes()) {
-        auto& info = *reply.add_nodes();
-        info.set_node(record.status.node());
-        for (const auto& axis : record.status.axes()) info.add_axes(axis);
-        info.set_plant(record.status.plant());
-        const std::string health = record.refused.empty() ? health_name(record.status.health()) : "refused";
-        const std::string detail = record.refused.empty() ? record.status.detail() : record.refused;
-        info.set_health(health + (detail.empty() ? "" : ": " + detail));
-        info.set_last_seen_s(std::chrono::duration<double>(now - record.last_seen).count());
-        info.set_clock(record.status.clock());
-        info.set_time_base(record.status.time_base());
-        info.set_participant(record.status.participant());
-        std::string holders;
-        for (const auto& hold : record.status.holds()) {
-          holders += (holders.empty() ? "" : ", ") + hold.server() + " (job " + std::to_string(hold.job_id()) +
-                     ", axis " + hold.axis() + ")";
-        }
-        info.set_held_by(holders);
-        if (const auto clock = clocks_.estimate(record.status.node())) {
-          info.set_clock_measured(true);
-          info.set_clock_offset_s(clock->offset_s);
-          info.set_round_trip_s(clock->round_trip_s);
+      for (const auto& record : nodes_.nodes()) fill_node_info(record, now, *reply.add_nodes());
+      break;
+    }
+    case netmc::v1::Request::kReset: {
+      const auto& reset = request.reset();
+      if (!admin && options_.admin_token_configured) {
+        session->send(error_response(request.request_id(),
+                                     "reset: needs the admin token (the file of netmc-server --admin-token-file, "
+                                     "named to the client by NETMC_TOKEN_FILE)"));
+        return;
+      }
+      std::optional<NodeRecord> target;
+      for (auto& record : nodes_.nodes()) {
+        if (record.status.node() == reset.node()) target = std::move(record);
+      }
+      if (!target) {
+        session->send(error_response(request.request_id(), "reset: no node '" + reset.node().substr(0, 64) +
+                                                               "' (netmc nodes lists the nodes this server sees)"));
+        return;
+      }
+      std::vector<std::string> axes(reset.axes().begin(), reset.axes().end());
+      for (const auto& axis : axes) {
+        const auto& hosted = target->status.axes();
+        if (std::find(hosted.begin(), hosted.end(), axis) == hosted.end()) {
+          session->send(error_response(request.request_id(), "reset: node " + reset.node() + " hosts no axis '" +
+                                                                 axis.substr(0, 64) + "'"));
+          return;
         }
       }
+      if (axes.empty()) axes.assign(target->status.axes().begin(), target->status.axes().end());
+      try {
+        for (const auto& axis : axes) {
+          netmc::dds::JobControl control;
+          control.axis(axis);
+          control.server(context_.identity());
+          control.kind(netmc::dds::CONTROL_FAULT_RESET);
+          dds::write_checked(control_, &control);
+        }
+      } catch (const std::exception& error) {
+        session->send(error_response(request.request_id(), std::string("reset: ") + error.what()));
+        return;
+      }
+      spdlog::info("fault reset of node {} ({} axes) sent{}", reset.node(), axes.size(), admin ? " by an admin" : "");
+      auto& reply = *response.mutable_reset();
+      reply.set_server(context_.identity());
+      reply.set_expiry_s(std::chrono::duration<double>(nodes_.expiry()).count());
+      fill_node_info(*target, std::chrono::steady_clock::now(), *reply.add_nodes());
       break;
     }
     case netmc::v1::Request::KIND_NOT_SET:
-      session->send(error_response(request.request_id(), "request: empty (expected submit, cancel, status, watch or nodes)"));
+      session->send(error_response(request.request_id(), "request: empty (expected submit, cancel, status, watch, nodes or reset)"));
       return;
   }
   session->send(response);
+}
+
+void JobService::fill_node_info(const NodeRecord& record, std::chrono::steady_clock::time_point now,
+                                netmc::v1::NodeInfo& info) const {
+  info.set_node(record.status.node());
+  for (const auto& axis : record.status.axes()) info.add_axes(axis);
+  info.set_plant(record.status.plant());
+  const std::string health = record.refused.empty() ? health_name(record.status.health()) : "refused";
+  const std::string detail = record.refused.empty() ? record.status.detail() : record.refused;
+  info.set_health(health + (detail.empty() ? "" : ": " + detail));
+  info.set_last_seen_s(std::chrono::duration<double>(now - record.last_seen).count());
+  info.set_clock(record.status.clock());
+  info.set_time_base(record.status.time_base());
+  info.set_participant(record.status.participant());
+  std::string holders;
+  for (const auto& hold : record.status.holds()) {
+    holders += (holders.empty() ? "" : ", ") + hold.server() + " (job " + std::to_string(hold.job_id()) + ", axis " +
+               hold.axis() + ")";
+  }
+  info.set_held_by(holders);
+  if (const auto clock = clocks_.estimate(record.status.node())) {
+    info.set_clock_measured(true);
+    info.set_clock_offset_s(clock->offset_s);
+    info.set_round_trip_s(clock->round_trip_s);
+  }
+  for (const auto& drive : record.status.drives()) {
+    auto& entry = *info.add_drives();
+    entry.set_axis(drive.axis());
+    entry.set_drive(drive.drive());
+    entry.set_state(drive.state());
+    entry.set_statusword(drive.statusword());
+    entry.set_error_code(drive.error_code());
+    entry.set_fault_latched(drive.fault_latched());
+    entry.set_last_fault(drive.last_fault());
+    entry.set_limits(drive.limits());
+  }
+  info.set_server_name(record.status.server_name());
 }
 
 void JobService::validate() {
@@ -539,7 +599,7 @@ void JobService::run(Job& job) {
         }
         return *estimate;
       };
-      RealtimeDdsRunner runner(channels, job.spec, job.id, {options_.axis_timeout, options_.silence_limit},
+      RealtimeDdsRunner runner(channels, job.spec, job.id, {options_.axis_timeout, options_.silence_limit, options_.positioning_timeout},
                                clocks_.time_base(), offsets);
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
       runner.run(on_iteration, job.cancel);

@@ -34,6 +34,10 @@ struct JobServiceOptions {
   std::size_t max_queued_jobs = 256;                  // waiting for validation or for axes
   std::size_t job_history = 256;                      // ended jobs kept for status; older ones forgotten
   std::size_t max_watchers_per_job = 16;              // netmc watch connections following one job
+  // Realtime: for every axis to stand ready at an iteration's start (hardware is moved there).
+  std::chrono::milliseconds positioning_timeout{60000};
+  // The server has an admin token: resetting an axis's fault needs it.
+  bool admin_token_configured = false;
 };
 
 class JobService {
@@ -52,6 +56,10 @@ class JobService {
               bool admin = false);
 
  private:
+  // netmc nodes's view of one node (also the answer to a reset).
+  void fill_node_info(const NodeRecord& record, std::chrono::steady_clock::time_point now,
+                      netmc::v1::NodeInfo& info) const;
+
   // A connection following a job (netmc watch); the job keeps it from idling out till it ends.
   struct Watcher {
     std::weak_ptr<management::Session> session;

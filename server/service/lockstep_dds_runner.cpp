@@ -57,7 +57,7 @@ void LockstepDdsRunner::run(const std::function<void(const sim::IterationRecord&
     for (std::uint32_t iteration = 1; iteration <= job_.iterations && !cancel.load(); ++iteration) {
       const control::AxisVector start = server_.begin_iteration(iteration);
       for (std::uint32_t axis = 0; axis < axes; ++axis) {
-        publisher_.begin_iteration(axis, iteration, start[static_cast<Eigen::Index>(axis)], 0.0);
+        publisher_.begin_iteration(axis, iteration, start[static_cast<Eigen::Index>(axis)], 0.0, true);
       }
       auto responses = collect(iteration, 0);
       bool cancelled = false;

@@ -45,6 +45,11 @@ int main(int argc, char** argv) {
                  "Realtime: milliseconds without any feedback from an axis before the job fails "
                  "(lost samples alone do not fail a job)")
       ->check(CLI::Range(1, 600000));
+  int positioning_timeout_ms = 60000;
+  app.add_option("--positioning-timeout", positioning_timeout_ms,
+                 "Realtime: milliseconds for every axis to stand ready at an iteration's start (hardware drives "
+                 "are moved there between iterations)")
+      ->check(CLI::Range(1, 3600000));
   int max_running_jobs = 32;
   app.add_option("--max-running-jobs", max_running_jobs,
                  "Jobs run at once, each on disjoint axes and its own thread; more wait in the queue")
@@ -132,11 +137,16 @@ int main(int argc, char** argv) {
     netmc::dds::DdsContext context(dds);
     netmc::service::NodeDirectory nodes(context);
     netmc::service::ClockTracker clocks(context, nodes, time_base);
-    netmc::service::JobService jobs(
-        context, nodes, clocks,
-        {std::chrono::milliseconds(axis_timeout_ms), std::chrono::milliseconds(discovery_timeout_ms),
-         std::chrono::milliseconds(silence_ms), time_base, static_cast<std::size_t>(max_running_jobs),
-         static_cast<std::size_t>(max_queued_jobs)});
+    netmc::service::JobServiceOptions options;
+    options.axis_timeout = std::chrono::milliseconds(axis_timeout_ms);
+    options.discovery_timeout = std::chrono::milliseconds(discovery_timeout_ms);
+    options.silence_limit = std::chrono::milliseconds(silence_ms);
+    options.time_base = time_base;
+    options.max_running_jobs = static_cast<std::size_t>(max_running_jobs);
+    options.max_queued_jobs = static_cast<std::size_t>(max_queued_jobs);
+    options.positioning_timeout = std::chrono::milliseconds(positioning_timeout_ms);
+    options.admin_token_configured = !admin_token_file.empty();
+    netmc::service::JobService jobs(context, nodes, clocks, options);
     limits.max_connections = static_cast<std::size_t>(max_connections);
     limits.session.idle_timeout = std::chrono::seconds(idle_timeout_s);
     boost::asio::io_context io;

@@ -74,6 +74,39 @@ void RealtimeDdsRunner::gather(std::uint32_t iteration, std::uint64_t cycle, Clo
   }
 }
 
+void RealtimeDdsRunner::prepare(std::uint32_t iteration, const control::AxisVector& start,
+                                const std::atomic<bool>& cancel) {
+  const std::size_t axes = job_.axes.size();
+  for (std::size_t axis = 0; axis < axes; ++axis) {
+    publisher_.prepare_iteration(axis, iteration, start[static_cast<Eigen::Index>(axis)]);
+  }
+  // A simulated axis is ready at once; hardware is moved back to the start first.
+  std::vector<bool> ready(axes, false);
+  std::size_t waiting = axes;
+  const auto deadline = Clock::now() + limits_.positioning_timeout;
+  while (waiting > 0 && !cancel.load()) {
+    const bool got = wait_axis_event(channels_, publisher_.job_id(), std::min(deadline, Clock::now() + std::chrono::milliseconds(100)),
+                                     [&](const netmc::dds::AxisEvent& event) {
+                                       const std::size_t axis = axis_index(channels_, event.axis());
+                                       if (event.kind() != netmc::dds::AXIS_READY || event.iteration() != iteration ||
+                                           ready[axis]) {
+                                         return;
+                                       }
+                                       ready[axis] = true;
+                                       --waiting;
+                                     });
+    if (!got && Clock::now() >= deadline) {
+      std::string names;
+      for (std::size_t axis = 0; axis < axes; ++axis) {
+        if (!ready[axis]) names += (names.empty() ? "" : ", ") + channels_.axes[axis];
+      }
+      throw JobFailure("axis " + names + " was not ready for iteration " + std::to_string(iteration) + " within " +
+                       std::to_string(limits_.positioning_timeout.count()) +
+                       " ms (at rest at its start; netmc-server --positioning-timeout)");
+    }
+  }
+}
+
 void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&)>& on_iteration,
                             const std::atomic<bool>& cancel) {
   const std::size_t axes = job_.axes.size();
@@ -83,6 +116,8 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
   try {
     for (std::uint32_t iteration = 1; iteration <= job_.iterations && !cancel.load(); ++iteration) {
       const control::AxisVector start = server_.begin_iteration(iteration);
+      prepare(iteration, start, cancel);
+      if (cancel.load()) break;
       // On the grid of whole periods of the server's clock: the jobs of one server that share a
       // period then sample in phase, and a node hosting axes of several of them takes all their
       // samples in one wake-up instead of one each.
@@ -93,7 +128,8 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
         // Each node starts the iteration on its own clock: t0 plus its measured offset.
         const netsim::ClockOffsetEstimate clock = offsets_(axis);
         uncertainty = std::max(uncertainty, clock.uncertainty_s);
-        publisher_.begin_iteration(axis, iteration, start[static_cast<Eigen::Index>(axis)], t0_s_ + clock.offset_s);
+        publisher_.begin_iteration(axis, iteration, start[static_cast<Eigen::Index>(axis)], t0_s_ + clock.offset_s,
+                                   false);
       }
       received_.assign(axes, std::vector<char>(cycles, 0));
       received_count_.assign(axes, 0);

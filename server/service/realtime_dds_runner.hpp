@@ -21,6 +21,8 @@ namespace netmc::service {
 struct RealtimeLimits {
   std::chrono::milliseconds axis_timeout{2000};   // for the axes' end-of-iteration reports
   std::chrono::milliseconds silence_limit{500};   // an axis silent this long fails the job
+  // For every axis to stand ready at an iteration's start (hardware is moved there).
+  std::chrono::milliseconds positioning_timeout{60000};
 };
 
 // The clock of axis `axis`'s node against the server's (throws JobFailure if unknown).
@@ -39,6 +41,9 @@ class RealtimeDdsRunner {
   // Takes feedback until `cycle`'s sample of every axis is in or `until` passes; samples of
   // older cycles that come late are used too (the newest wins in ContourServer).
   void gather(std::uint32_t iteration, std::uint64_t cycle, std::chrono::steady_clock::time_point until);
+  // PREPARE_ITERATION to every axis, then waits for each one's AXIS_READY (throws JobFailure
+  // naming the axes not ready within the positioning timeout).
+  void prepare(std::uint32_t iteration, const control::AxisVector& start, const std::atomic<bool>& cancel);
   double job_time_s() const { return dds::time_base_now_s(time_base_) - t0_s_; }
 
   const JobChannels& channels_;

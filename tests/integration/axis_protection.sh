@@ -17,7 +17,7 @@ start x "$build/server/axis/netmc-axis" --node guard --axes x,y --position-windo
 start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 port=$(server_port 127.0.0.1)
 for _ in $(seq 50); do grep -q "limits x:" "$tmp/x.log" && break; sleep 0.1; done
-grep -q "limits x: position \[-0.001, 0.055\] m; y: position \[0.03, 0.07\] m," "$tmp/x.log" ||
+grep -q "limits x: command 1, position \[-0.001, 0.055\] m; y: command 1, position \[0.03, 0.07\] m," "$tmp/x.log" ||
   { echo "FAIL: the node does not state each axis's limits"; cat "$tmp/x.log"; exit 1; }
 echo "node guard: $(sed -n 's/.*\(limits x: .*\), clock .*/\1/p' "$tmp/x.log")"
 
@@ -46,8 +46,8 @@ second=0
 echo "job 2 refused: the fault latched"
 
 kill -USR1 "${pids[0]}"
-for _ in $(seq 40); do grep -q "faults reset by the operator" "$tmp/x.log" && break; sleep 0.05; done
-grep -q "faults reset by the operator" "$tmp/x.log"
+for _ in $(seq 40); do grep -q "faults of axes x reset by the operator" "$tmp/x.log" && break; sleep 0.05; done
+grep -q "faults of axes x reset by the operator" "$tmp/x.log"
 sleep 1  # the reset status reaches the server
 "$netmc" run --server "127.0.0.1:$port" --quiet --controller adrc --iterations 1 \
   --trajectory circle:r=2mm,cx=50mm,cy=50mm,period=8s --json "$tmp/third.json" >/dev/null

@@ -19,15 +19,16 @@ version=$(sed -n 's/^project(netmc VERSION \([0-9.]*\).*/\1/p' "$source_dir/CMak
 prefix=$tmp/prefix
 
 cmake --install "$build" --prefix "$prefix" >"$tmp/install.log"
-for program in netmc netmc-server netmc-axis; do
+for program in netmc netmc-server netmc-axis netmc-drive-emulator; do
   out=$("$prefix/bin/$program" --version)
   [ "$out" = "$program $version" ] || { echo "FAIL: $program --version said '$out'"; exit 1; }
 done
-echo "installed: netmc, netmc-server, netmc-axis --version: $version"
+echo "installed: netmc, netmc-server, netmc-axis, netmc-drive-emulator --version: $version"
 for file in include/netmc/control/axis/adrc_controller.hpp include/netmc/plant/plant_catalog.hpp \
   include/netmc/netsim/delay_model.hpp include/netmc/drive_plugin.h \
   share/netmc/examples/drive_plugin/example_drive.c share/netmc/examples/etc-netmc/server.env \
-  share/netmc/examples/dds-profiles/udp_only.xml share/doc/netmc/LICENSE; do
+  share/netmc/examples/dds-profiles/udp_only.xml share/netmc/examples/drive-maps/default-map.json \
+  share/doc/netmc/LICENSE; do
   [ -f "$prefix/$file" ] || { echo "FAIL: $file not installed"; exit 1; }
 done
 # The example specs: one per preset, each what `--spec` reads, giving the preset's first run.
@@ -95,11 +96,12 @@ deb=$(ls "$tmp/package"/netmc_"$version"_*.deb)
 dev=$(ls "$tmp/package"/netmc-dev_"$version"_*.deb)
 depends=$(dpkg-deb -f "$deb" Depends)
 echo "$(basename "$deb"): $(du -k "$deb" | cut -f1) KiB, Depends: $depends"
-for package in libfastrtps2.9 libprotobuf32 libc6 libstdc++6; do
+for package in libfastrtps2.9 libprotobuf32 libmodbus5 libc6 libstdc++6; do
   [[ "$depends" == *"$package"* ]] || { echo "FAIL: the .deb does not depend on $package"; exit 1; }
 done
 dpkg-deb -c "$deb" >"$tmp/contents"
-for file in ./usr/bin/netmc ./usr/bin/netmc-server ./usr/bin/netmc-axis ./usr/lib/systemd/system/netmc-server.service \
+for file in ./usr/bin/netmc ./usr/bin/netmc-server ./usr/bin/netmc-axis ./usr/bin/netmc-drive-emulator \
+  ./usr/lib/systemd/system/netmc-server.service \
   ./usr/share/netmc/examples/specs/seed001.json; do
   grep -q " $file\$" "$tmp/contents" || { echo "FAIL: $file not in the .deb"; exit 1; }
 done

@@ -2,9 +2,11 @@
 # A rogue DDS participant (tests/integration/rogue_participant.cpp) on the domain of a netmc
 # server and its axis nodes, without DDS Security (which keeps it out altogether:
 # integration.dds_security), on loopback:
-#   1. drive: as a server of its own it starts a job on an idle lockstep axis whose operator set
-#      --command-limit 50 and commands 1e30: the axis trips at the first command (position stays
-#      0), says so, and stays up; NaN commands to a realtime axis: the same.
+#   1. drive: as a server of its own it starts a job on an idle lockstep axis started with
+#      default flags (its simulated drive's rated input is its command limit) and commands 1e30:
+#      the axis trips at the first command (position stays 0), says so, and stays up; NaN commands
+#      to a realtime axis: the same. An axis whose node obeys only netmc-server (--server-name)
+#      ignores the rogue altogether: no sample, no event, and the node says whom it ignored.
 #   2. hijack, lockstep: while paper 001's adrc+ilccc job runs (2 iterations), it speaks in the
 #      server's and the node's names: setpoints with sequence number 2^64-2 and NaN commands for
 #      the next cycle, feedback 5 mm off, faults, END_JOB, and node statuses spoofing the node.
@@ -21,10 +23,10 @@ axis_bin=$build/server/axis/netmc-axis
 rogue=$build/tests/integration/netmc_rogue_participant
 dds=(--domain "$domain" --transport udp)
 
-start gz "$axis_bin" --node guard-z --axes z --command-limit 50 "${dds[@]}"
+start gz "$axis_bin" --node guard-z --axes z "${dds[@]}"
 start gw "$axis_bin" --node guard-w --axes w --command-limit 50 --clock realtime "${dds[@]}"
-start hx "$axis_bin" --node hx --axes x "${dds[@]}"
-start hy "$axis_bin" --node hy --axes y "${dds[@]}"
+start hx "$axis_bin" --node hx --axes x --server-name netmc-server "${dds[@]}"
+start hy "$axis_bin" --node hy --axes y --server-name netmc-server "${dds[@]}"
 start rx "$axis_bin" --node rx --axes rx --clock realtime "${dds[@]}"
 start ry "$axis_bin" --node ry --axes ry --clock realtime "${dds[@]}"
 start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 "${dds[@]}"
@@ -38,6 +40,13 @@ done
 grep -q "event AXIS_FAULT: axis z tripped: command 1e+30" "$tmp/drive-z.txt" ||
   { echo "FAIL: axis z did not trip on a command of 1e30"; cat "$tmp/gz.log"; exit 1; }
 grep -q "largest |position| 0 m" "$tmp/drive-z.txt" || { echo "FAIL: axis z moved"; exit 1; }
+grep -q "axis z FAULT (job 4242): command 1e+30 (cycle 0) beyond the axis's limit 1;" "$tmp/gz.log" ||
+  { echo "FAIL: the default limit (seed001's rated input, 1) did not trip axis z"; cat "$tmp/gz.log"; exit 1; }
+"$rogue" drive --axis x --command 0.5 --seconds 2 --domain "$domain" | tee "$tmp/drive-x.txt"
+grep -q "0 samples back, largest |position| 0 m, event none" "$tmp/drive-x.txt" &&
+  grep -q "is ignored: this node obeys server 'netmc-server' only" "$tmp/hx.log" ||
+  { echo "FAIL: a node with --server-name netmc-server obeyed the rogue"; cat "$tmp/hx.log"; exit 1; }
+echo "--server-name: $(grep -o "participant [0-9a-f]* ('rogue') is ignored[^)]*)" "$tmp/hx.log" | head -n 1)"
 "$rogue" drive --axis w --clock realtime --nan --seconds 10 --domain "$domain" | tee "$tmp/drive-w.txt"
 grep -q "event AXIS_FAULT: axis w tripped: .*not finite" "$tmp/drive-w.txt" ||
   { echo "FAIL: axis w did not trip on a NaN command"; cat "$tmp/gw.log"; exit 1; }

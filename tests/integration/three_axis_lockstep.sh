@@ -3,7 +3,9 @@
 # hosting x and y, the other z (linear-motor plants), lockstep over UDP. The thesis's ch. 6 study
 # (`--preset thesis-spatial`, GTCF-SARC on a tilted circle in space under six loop delays, 4 s per
 # run: metrics over 3.14-4 s) must
-# give the same JSON, byte for byte, as `netmc sim` in-process.
+# give the same JSON, byte for byte, as `netmc sim` in-process. The thesis simulates these runs
+# unsaturated: their first cycles command up to 27 V, beyond the stage's +-10 V that the nodes'
+# simulated drives take by default, so the nodes are told --command-limit 40.
 # Usage: three_axis_lockstep.sh BUILD_DIR [extra study flags...]
 set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
@@ -11,8 +13,10 @@ build=$1
 shift
 source "$(dirname "$0")/lib.sh"
 
-start xy "$build/server/axis/netmc-axis" --node it-xy --axes x,y --plant linmotor --domain "$domain" --transport udp
-start z "$build/server/axis/netmc-axis" --node it-z --axes z --plant linmotor --domain "$domain" --transport udp
+start xy "$build/server/axis/netmc-axis" --node it-xy --axes x,y --plant linmotor --command-limit 40 \
+  --domain "$domain" --transport udp
+start z "$build/server/axis/netmc-axis" --node it-z --axes z --plant linmotor --command-limit 40 \
+  --domain "$domain" --transport udp
 start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 port=$(server_port 127.0.0.1)
 
