@@ -66,7 +66,14 @@ std::map<std::string, AxisDrive> open_axis_drives(const std::map<std::string, dr
       }
       entry.limits = flags.or_else(rating_limits(spec.plant()));
     } else {
-      entry.hardware = open_hardware(spec);
+      const std::string flag = "--drive " + axis + "=" + spec.describe().substr(0, 120);
+      try {
+        entry.hardware = open_hardware(spec);
+      } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument(flag + ": " + error.what());
+      } catch (const drive::DriveError& error) {
+        throw drive::DriveError(flag + ": " + error.what());
+      }
       entry.hardware->write_quick_stop_deceleration(settings.quick_stop_deceleration_m_s2);
       entry.limits = flags.or_else(entry.hardware->configured_limits());
       std::string missing;

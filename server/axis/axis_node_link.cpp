@@ -50,6 +50,14 @@ AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
                                      partition),
                       context.writer(events, dds::Delivery::control, partition)};
   }
+  // A simulated drive is made with each job, powered up: until the first, that is what it shows.
+  for (const auto& axis : config_.axes) {
+    if (config_.drives.at(axis).hardware) continue;
+    drive_reports_[axis] = {drive::PowerState::switch_on_disabled,
+                            static_cast<std::uint16_t>(drive::statusword_bits(drive::PowerState::switch_on_disabled) |
+                                                       drive::statusword::remote),
+                            0};
+  }
   probe_thread_ = std::thread([this] { answer_probes(); });
 }
 

@@ -31,7 +31,8 @@ for _ in $(seq 100); do
   [ "$listed" -eq 20 ] && break
   sleep 0.1
 done
-"$netmc" nodes --server "127.0.0.1:$portA" | head -4
+"$netmc" nodes --server "127.0.0.1:$portA" >"$tmp/nodes.txt"  # whole: a pipe to head may end it early
+head -4 "$tmp/nodes.txt"
 echo "netmc nodes lists $listed of 20 nodes"
 [ "$listed" -eq 20 ] || { echo "FAIL: expected 20 nodes"; exit 1; }
 

@@ -54,8 +54,31 @@ server() {
   lab_wait_log "$1" 'listening on' 10
   port=$(port_of "$1")
 }
+# Refused at the start, before the node joins the domain: a malformed map, an unknown register,
+# a scale out of range, an unreachable drive.
+cat >"$tmp/bad-map.json" <<'JSON'
+{ "format": "netmc-modbus-map", "version": 1, "unit_id": 1, "high_word_first": true, "job_mode": "cst",
+  "registers": { "statusword": { "address": 0, "type": "uint16" }, "torque_demand": { "address": 9, "type": "int16" } } }
+JSON
+sed '/"position_actual"/ s/"scale": 1e9/"scale": 0/' "$(dirname "$0")/../../server/drive/modbus/default-map.json" \
+  >"$tmp/zero-scale.json"
+printf '{ "format": "netmc-modbus-map", ' >"$tmp/truncated.json"
+refused() {  # refused WHAT DRIVE_SPEC EXPECTED_TEXT
+  local status=0
+  lab_exec rig -- "$axis_bin" --node refused --axes x --clock realtime --command-limit 1 --position-window 0:0.1 \
+    --velocity-limit 0.5 --drive "x=$2" >"$tmp/refused.log" 2>&1 || status=$?
+  [ "$status" -eq 2 ] && grep -q -- "$3" "$tmp/refused.log" || lab_fail "$1: exit $status, $(cat "$tmp/refused.log")"
+  echo "refused at start, $1: $(grep -o 'error: .*' "$tmp/refused.log" | cut -c1-150)"
+}
+refused "unknown register" "modbus-tcp:127.0.0.1:$px,map=$tmp/bad-map.json" "torque_demand"
+refused "zero scale" "modbus-tcp:127.0.0.1:$px,map=$tmp/zero-scale.json" "registers.position_actual.scale"
+refused "malformed map" "modbus-tcp:127.0.0.1:$px,map=$tmp/truncated.json" "truncated.json"
+refused "unreachable drive" "modbus-tcp:127.0.0.1:1" "127.0.0.1:1"
+refused "bad unit" "modbus-tcp:127.0.0.1:$px,unit=300" "unit"
 node node
 server server
+lab_exec rig -- "$netmc" nodes --server "127.0.0.1:$port" | grep -q '^refused ' && lab_fail "a refused node joined the domain"
+
 run() { lab_exec rig -- "$netmc" run --server "127.0.0.1:$port" --clock realtime "$@"; }
 small=(--controller adrc --iterations 1 --trajectory circle:r=2mm,cx=55mm,cy=50mm,period=2s)
 
