@@ -35,36 +35,6 @@ std::optional<PowerState> power_state_from_name(const std::string& name) {
   return std::nullopt;
 }
 
-// The standard's table: which bits decide (the mask) and their pattern.
-std::optional<PowerState> decode_statusword(std::uint16_t word) {
-  if ((word & 0x4F) == 0x00) return PowerState::not_ready_to_switch_on;
-  if ((word & 0x4F) == 0x40) return PowerState::switch_on_disabled;
-  if ((word & 0x6F) == 0x21) return PowerState::ready_to_switch_on;
-  if ((word & 0x6F) == 0x23) return PowerState::switched_on;
-  if ((word & 0x6F) == 0x27) return PowerState::operation_enabled;
-  if ((word & 0x6F) == 0x07) return PowerState::quick_stop_active;
-  if ((word & 0x4F) == 0x0F) return PowerState::fault_reaction_active;
-  if ((word & 0x4F) == 0x08) return PowerState::fault;
-  return std::nullopt;
-}
-
-std::uint16_t statusword_bits(PowerState state) {
-  using namespace statusword;
-  switch (state) {
-    case PowerState::not_ready_to_switch_on: return 0;
-    case PowerState::switch_on_disabled: return switch_on_disabled;
-    case PowerState::ready_to_switch_on: return quick_stop | voltage_enabled | ready_to_switch_on;
-    case PowerState::switched_on: return quick_stop | voltage_enabled | ready_to_switch_on | switched_on;
-    case PowerState::operation_enabled:
-      return quick_stop | voltage_enabled | ready_to_switch_on | switched_on | operation_enabled;
-    case PowerState::quick_stop_active: return voltage_enabled | ready_to_switch_on | switched_on | operation_enabled;
-    case PowerState::fault_reaction_active:
-      return voltage_enabled | fault | ready_to_switch_on | switched_on | operation_enabled;
-    case PowerState::fault: return fault;
-  }
-  return 0;
-}
-
 // Bit 1 (enable voltage) low wins over everything, then bit 2 (quick stop, active low), then
 // bits 0 and 3.
 PowerCommand decode_controlword(std::uint16_t word) {

@@ -44,9 +44,35 @@ inline constexpr std::uint16_t internal_limit_active = 1u << 11;
 
 // The state a statusword shows (its bits 0-3, 5 and 6, by the standard's table).
 // A pattern the table does not list (a drive that answers nonsense) decodes as nullopt.
-std::optional<PowerState> decode_statusword(std::uint16_t word);
+// (Inline: a node decodes every sample's statusword.)
+constexpr std::optional<PowerState> decode_statusword(std::uint16_t word) {
+  if ((word & 0x4F) == 0x00) return PowerState::not_ready_to_switch_on;
+  if ((word & 0x4F) == 0x40) return PowerState::switch_on_disabled;
+  if ((word & 0x6F) == 0x21) return PowerState::ready_to_switch_on;
+  if ((word & 0x6F) == 0x23) return PowerState::switched_on;
+  if ((word & 0x6F) == 0x27) return PowerState::operation_enabled;
+  if ((word & 0x6F) == 0x07) return PowerState::quick_stop_active;
+  if ((word & 0x4F) == 0x0F) return PowerState::fault_reaction_active;
+  if ((word & 0x4F) == 0x08) return PowerState::fault;
+  return std::nullopt;
+}
 // The state bits of `state` (voltage enabled where the power stage is on), for a device.
-std::uint16_t statusword_bits(PowerState state);
+constexpr std::uint16_t statusword_bits(PowerState state) {
+  using namespace statusword;
+  switch (state) {
+    case PowerState::not_ready_to_switch_on: return 0;
+    case PowerState::switch_on_disabled: return switch_on_disabled;
+    case PowerState::ready_to_switch_on: return quick_stop | voltage_enabled | ready_to_switch_on;
+    case PowerState::switched_on: return quick_stop | voltage_enabled | ready_to_switch_on | switched_on;
+    case PowerState::operation_enabled:
+      return quick_stop | voltage_enabled | ready_to_switch_on | switched_on | operation_enabled;
+    case PowerState::quick_stop_active: return voltage_enabled | ready_to_switch_on | switched_on | operation_enabled;
+    case PowerState::fault_reaction_active:
+      return voltage_enabled | fault | ready_to_switch_on | switched_on | operation_enabled;
+    case PowerState::fault: return fault;
+  }
+  return 0;
+}
 
 // Controlword commands (0x6040), as the standard writes them.
 namespace controlword {

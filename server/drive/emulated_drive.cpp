@@ -80,12 +80,13 @@ void EmulatedDrive::advance_to(double time_s) {
   if (!(time_s >= time_)) return;
   while (true) {
     if (!loops_active()) {
-      // The torque target held (CST), or no power: the plant as the studies run it.
+      // The torque target held (CST), or no power: the plant as the studies run it. (Its state
+      // is checked where it is read: SimulatedDrive::read, the emulator's registers.)
       input_ = machine_.state() == PowerState::operation_enabled ? clamp_input(target_torque_) : 0.0;
       plant_->advance(time_s - time_, input_);
       time_ = time_s;
       next_cycle_ = std::max(next_cycle_, time_);
-      break;
+      return;
     }
     if (time_ >= next_cycle_) {
       run_loops();
@@ -97,8 +98,12 @@ void EmulatedDrive::advance_to(double time_s) {
     time_ = step_end;
     if (time_ >= time_s) break;
   }
+  check_model();
+}
+
+void EmulatedDrive::check_model() {
   if (!std::isfinite(plant_->position()) || !std::isfinite(plant_->velocity())) {
-    machine_.fault(error_code::plant_not_finite);
+    raise_fault(error_code::plant_not_finite);
   }
 }
 

@@ -55,6 +55,9 @@ class EmulatedDrive {
   void set_quick_stop_deceleration(double deceleration_m_s2);
   // A fault the drive detects (its fieldbus watchdog, a broken model): fault reaction, then Fault.
   void raise_fault(std::uint16_t error_code);
+  // A model whose state is no longer finite faults (0xFF01); checked where the drive is read,
+  // not in every step of the plant.
+  void check_model();
 
   PowerState state() const { return machine_.state(); }
   std::uint16_t statusword() const;

@@ -69,6 +69,4 @@ bool PowerStateMachine::power_on() const {
          state_ == PowerState::fault_reaction_active;
 }
 
-std::uint16_t PowerStateMachine::statusword() const { return statusword_bits(state_) | statusword::remote; }
-
 }  // namespace netmc::drive

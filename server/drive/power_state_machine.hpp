@@ -30,7 +30,7 @@ class PowerStateMachine {
   // Whether the power stage drives the motor: the states in which the drive's command or one
   // of its ramps acts.
   bool power_on() const;
-  std::uint16_t statusword() const;
+  std::uint16_t statusword() const { return statusword_bits(state_) | statusword::remote; }
   std::uint16_t error_code() const { return error_code_; }
   std::uint16_t last_controlword() const { return last_controlword_; }
 

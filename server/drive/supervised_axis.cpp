@@ -139,13 +139,16 @@ void SupervisedAxis::apply_one(const Delivery& delivery) {
 
 void SupervisedAxis::apply(const std::vector<Delivery>& deliveries, double until_s) {
   const bool virtual_time = drive_->virtual_time();
+  // The travel and speed at each switch instant too, where there is a limit to check them
+  // against (a simulation's input switches between samples; netmc sim's axes have no limits).
+  const bool check_between = limits_.any();
   for (const Delivery& delivery : deliveries) {
     const double switch_time = std::clamp(delivery.arrival_time_s, time_s_, until_s);
     time_s_ = switch_time;
     if (virtual_time) {
       drive_->cycle(switch_time);
       reading_time_s_ = switch_time;
-      refresh();
+      if (check_between) refresh();
     }
     apply_one(delivery);
   }

@@ -142,6 +142,7 @@ void DriveEmulator::advance(double now) {
     }
   }
   drive_.advance_to(now);
+  drive_.check_model();
   log_state_change();
 }
 
