@@ -13,7 +13,7 @@ build=(build-essential cmake ninja-build pkg-config dpkg-dev file
   libfastrtps-dev libfastcdr-dev fastddsgen
   libboost-dev libboost-system-dev libssl-dev
   libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
-  libmodbus-dev)
+  libmodbus-dev libzip-dev libtinyxml2-dev)
 # What the tests and benchmarks use besides: gnuplot for figures, namespaces and nftables for
 # test hosts, rt-tests for the machine's latency, openssl for DDS Security certificates, systemd
 # for checking the units, and podman with compose for the container test.
