@@ -12,6 +12,15 @@ foreach(library control plant netsim random)
 endforeach()
 install(TARGETS netmc_control netmc_plant netmc_netsim netmc_random EXPORT netmcTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)
+# A component plugin (control/plugin/component_plugin.hpp) is a shared object that may link these
+# archives: they are built position-independent (without semantic interposition, so the programs
+# that link them lose no inlining), and netmc::control tells an installed plugin the version it
+# is built against (NETMC_VERSION, checked when netmc loads the plugin).
+set_target_properties(netmc_control netmc_plant netmc_netsim PROPERTIES POSITION_INDEPENDENT_CODE ON)
+foreach(library control plant netsim)
+  target_compile_options(netmc_${library} PRIVATE $<$<CXX_COMPILER_ID:GNU,Clang>:-fno-semantic-interposition>)
+endforeach()
+target_compile_definitions(netmc_control INTERFACE $<INSTALL_INTERFACE:NETMC_VERSION="${PROJECT_VERSION}">)
 foreach(dir control plant netsim)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/netmc/${dir}
     COMPONENT dev FILES_MATCHING PATTERN "*.hpp")
@@ -25,6 +34,12 @@ install(FILES ${PROJECT_SOURCE_DIR}/server/drive/include/netmc/drive_plugin.h
 install(FILES ${PROJECT_SOURCE_DIR}/examples/drive_plugin/CMakeLists.txt
   ${PROJECT_SOURCE_DIR}/examples/drive_plugin/example_drive.c ${PROJECT_SOURCE_DIR}/examples/drive_plugin/README.md
   DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/drive_plugin COMPONENT dev)
+# The example component plugin: a PD axis loop and paper 001's servo axis in C++, built out of
+# tree with find_package(netmc).
+install(FILES ${PROJECT_SOURCE_DIR}/examples/controller_plugin/CMakeLists.txt
+  ${PROJECT_SOURCE_DIR}/examples/controller_plugin/example_controller.cpp
+  ${PROJECT_SOURCE_DIR}/examples/controller_plugin/README.md
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/controller_plugin COMPONENT dev)
 set(NETMC_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/netmc)
 install(EXPORT netmcTargets NAMESPACE netmc:: DESTINATION ${NETMC_CMAKE_DIR} COMPONENT dev)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/netmcConfig.cmake.in
