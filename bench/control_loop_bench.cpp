@@ -16,7 +16,12 @@
 #include "client/study_runner.hpp"
 #include "control/contour_error/contour_error_estimator.hpp"
 #include "control/trajectory/circle_trajectory.hpp"
-#include "control/controller_catalog.hpp"
+#include "control/axis/adrc_controller.hpp"
+#include "control/cross_coupling/contouring_controller.hpp"
+#include "control/cross_coupling/iterative_learning_cross_coupling.hpp"
+#include "control/task_space/task_space_adrc.hpp"
+#include "control/task_space/task_space_diarc.hpp"
+#include "control/task_space/task_space_sarc.hpp"
 #include "control/trajectory/cubic_spline_curve.hpp"
 #include "control/trajectory/ellipse_trajectory.hpp"
 #include "control/trajectory/feed_rate_trajectory.hpp"
@@ -24,6 +29,7 @@
 #include "control/trajectory/lissajous_trajectory.hpp"
 #include "control/task_space/spatial_sarc.hpp"
 #include "control/task_space/task_frame.hpp"
+#include "server/job/controller_gains.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/sim/contour_job_runner.hpp"
 
@@ -45,8 +51,15 @@ void control_step(benchmark::State& state, const std::string& controller_name) {
     references[k] = circle.sample(static_cast<double>(k) * kSamplePeriod);
     measured[k] = references[k].position + Eigen::Vector2d(1e-4, -5e-5);
   }
-  auto controller =
-      netmc::control::make_contouring_controller(controller_name, {}, kSamplePeriod);
+  // Paper 001's laws with its gains, as the registry composes adrc and adrc+ilccc.
+  namespace c = netmc::control;
+  std::unique_ptr<c::ContourCompensator> compensator = std::make_unique<c::NoContourCompensation>();
+  if (controller_name == "adrc+ilccc") {
+    compensator = std::make_unique<c::IterativeLearningCrossCoupling>(c::IterativeLearningGains{}, kSamplePeriod);
+  }
+  c::ContouringController controller(std::make_unique<c::AdrcController>(c::AdrcGains{}, kSamplePeriod),
+                                     std::make_unique<c::AdrcController>(c::AdrcGains{}, kSamplePeriod),
+                                     c::make_contour_error_estimator("curvature"), std::move(compensator));
   const Eigen::Vector2d start = references[0].position;
   controller.begin_iteration(start, kCycles);
 
@@ -103,7 +116,7 @@ void BM_ControlStep_Adrc_TwoAxes(benchmark::State& state) { control_step(state, 
 // iterations (README), which a long benchmark run would reach.
 void BM_SimulatedIteration_Seed001_AdrcIlccc(benchmark::State& state) {
   auto spec = netmc::cli::seed001_job("adrc+ilccc");
-  spec.mutable_controller()->mutable_ilccc()->set_q_cutoff_hz(20.0);
+  netmc::job::set_gain(*spec.mutable_controller(), "ilccc", "q_cutoff_hz", 20.0);
   netmc::sim::ContourJob job = netmc::job::build_contour_job(spec);
   job.iterations = 100'000;  // more than a benchmark run reaches, within a job's work ceiling
   netmc::sim::ContourJobRunner runner(std::move(job));
@@ -190,7 +203,19 @@ void task_space_step(benchmark::State& state, const std::string& controller_name
     const Eigen::Vector2d v = references[k].velocity;
     measured[k] = references[k].position + 3e-6 * Eigen::Vector2d(-v.y(), v.x()).normalized();
   }
-  auto controller = netmc::control::make_contour_controller(controller_name, {}, h, ellipse);
+  // The laws with the thesis's gains, in the ellipse's global frame or the local one.
+  namespace c = netmc::control;
+  std::unique_ptr<c::ContourController> controller;
+  if (controller_name == "ltcf-sarc") controller = std::make_unique<c::TaskSpaceSarc>(c::SarcGains{}, h, nullptr);
+  if (controller_name == "gtcf-sarc") {
+    controller = std::make_unique<c::TaskSpaceSarc>(c::SarcGains{}, h, c::make_task_frame(ellipse));
+  }
+  if (controller_name == "gtcf-diarc") {
+    controller = std::make_unique<c::TaskSpaceDiarc>(c::DiarcGains{}, h, c::make_task_frame(ellipse));
+  }
+  if (controller_name == "gtcf-adrc") {
+    controller = std::make_unique<c::TaskSpaceAdrc>(c::GtcfAdrcGains{}, h, c::make_task_frame(ellipse));
+  }
   controller->begin_iteration(references[0].position, cycles);
   std::size_t k = 0;
   for (auto _ : state) {

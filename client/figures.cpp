@@ -126,7 +126,9 @@ Figure contour_figure(const SimOutputs& outputs, const std::string& data_dir) {
   const auto run_title = [&](std::size_t i) {
     const auto& iterations = outputs.study.runs(static_cast<int>(i)).iterations();
     const bool unstable = !iterations.empty() && iterations[iterations.size() - 1].diverged();
-    return gnuplot_text(outputs.traces[i].label) + (unstable ? " (unstable)" : "");
+    const bool not_following = !iterations.empty() && iterations[iterations.size() - 1].did_not_follow();
+    return gnuplot_text(outputs.traces[i].label) +
+           (unstable ? " (unstable)" : not_following ? " (did not follow the reference)" : "");
   };
   for (std::size_t i = 0; i < outputs.traces.size(); ++i) {
     const auto& table = outputs.traces[i].table;
@@ -431,7 +433,8 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
                                   const std::string& data_dir) {
   const std::size_t config = sweep.column("config"), base = sweep.column("base"),
                     run = sweep.column("run"), delay = sweep.column("delay_max_s"),
-                    iteration = sweep.column("iteration"), diverged = sweep.column("diverged");
+                    iteration = sweep.column("iteration"), diverged = sweep.column("diverged"),
+                    not_following = sweep.column("did_not_follow");
   // The last row of each configuration is its last iteration.
   std::map<long long, std::size_t> last_row;
   for (std::size_t r = 0; r < sweep.rows(); ++r) {
@@ -478,6 +481,7 @@ std::vector<Figure> sweep_figures(const CsvTable& sweep, const std::vector<std::
         ++unstable[series];
         continue;
       }
+      if (sweep.text(r, not_following) == "1") continue;  // no result to plot (study_report.cpp)
       cell.push_back(sweep.number(r, column) * scale);
     }
     std::vector<std::string> elements;

@@ -8,6 +8,8 @@
 #include <tuple>
 #include <utility>
 
+#include "server/job/controller_gains.hpp"
+
 namespace netmc::cli {
 namespace {
 
@@ -28,7 +30,7 @@ StudyPlan seed001_study(const std::string& title, const netmc::v1::Trajectory* t
     plan.jobs.push_back(job);
   }
   plan.jobs.back().set_name("adrc+ilccc+q20hz");
-  plan.jobs.back().mutable_controller()->mutable_ilccc()->set_q_cutoff_hz(kQFilterCutoffHz);
+  job::set_gain(*plan.jobs.back().mutable_controller(), "ilccc", "q_cutoff_hz", kQFilterCutoffHz);
   return plan;
 }
 
@@ -133,8 +135,8 @@ StudyPlan thesis_ellipse() {
   // approximation costs contour accuracy and the two frames part (thesis: GTCF 61 % better).
   for (const char* controller : {"ltcf-sarc", "gtcf-sarc"}) {
     auto job = thesis_job(t, controller, std::string(controller) + " (C, soft tangential)", 10.0);
-    job.mutable_controller()->mutable_task_space()->set_lambda_m(2.0);
-    job.mutable_controller()->mutable_task_space()->set_k_m(5.0);
+    job::set_gain(*job.mutable_controller(), "task_space", "lambda_m", 2.0);
+    job::set_gain(*job.mutable_controller(), "task_space", "k_m", 5.0);
     plan.jobs.push_back(job);
   }
   for (auto& job : plan.jobs) job.set_command_limit(kThesisDriveLimitV);
@@ -177,7 +179,7 @@ StudyPlan thesis_circle() {
     // The filter lives in the global frame; the local-frame controller meets the raw error (as
     // the thesis's C1, which saturates and goes unstable here).
     if (std::string(controller).starts_with("gtcf")) {
-      job.mutable_controller()->mutable_task_space()->set_initialization_filter(true);
+      job::set_gain_choice(*job.mutable_controller(), "task_space", "initialization_filter", "on");
     }
     plan.jobs.push_back(job);
   }
@@ -302,7 +304,7 @@ StudyPlan thesis_cogging() {
     for (const Row& row : rows) {
       const std::string label = fmt::format("{} {} Set{}", row.label, experiment.name, row.set);
       auto job = thesis_job(experiment.trajectory, "gtcf-darc-cogging", label, 2.0);
-      job.mutable_controller()->mutable_task_space()->set_cogging_adaptation(row.cogging_adaptation);
+      job::set_gain(*job.mutable_controller(), "task_space", "cogging_adaptation", row.cogging_adaptation);
       apply_thesis_set(job, row.set);
       plan.jobs.push_back(job);
       const bool first = experiment.name == std::string_view("I");
@@ -379,19 +381,18 @@ void set_linmotor_adrc_gains(netmc::v1::ControllerSpec& controller) {
   constexpr double kLoopBandwidth = 300.0;
   constexpr double kMassX = 0.1;
   constexpr double kMassY = 0.55;
-  auto& x = *controller.mutable_adrc();
-  x.set_r0(2000.0);
-  x.set_w0(1500.0);
-  x.set_b0(1.0 / kMassX);
-  x.set_kp(kLoopBandwidth * kLoopBandwidth * kMassX);
-  x.set_kd(2.0 * kLoopBandwidth * kMassX);
+  job::set_gain(controller, "adrc", "r0", 2000.0);
+  job::set_gain(controller, "adrc", "w0", 1500.0);
+  job::set_gain(controller, "adrc", "b0", 1.0 / kMassX);
+  job::set_gain(controller, "adrc", "kp", kLoopBandwidth * kLoopBandwidth * kMassX);
+  job::set_gain(controller, "adrc", "kd", 2.0 * kLoopBandwidth * kMassX);
   // The coupling term must not be cancelled as disturbance (the paper's own-command input would
   // cancel it: PIDCCC then changes e_rms by < 3 %); without coupling the two inputs are equal.
-  x.set_observer_sees_sent_command(true);
-  auto& y = *controller.mutable_adrc_y();
-  y.set_b0(1.0 / kMassY);
-  y.set_kp(kLoopBandwidth * kLoopBandwidth * kMassY);
-  y.set_kd(2.0 * kLoopBandwidth * kMassY);
+  job::set_gain_choice(controller, "adrc", "observer_input", "sent");
+  // The y axis's mass.
+  job::set_axis_gain(controller, "adrc", "y", "b0", 1.0 / kMassY);
+  job::set_axis_gain(controller, "adrc", "y", "kp", kLoopBandwidth * kLoopBandwidth * kMassY);
+  job::set_axis_gain(controller, "adrc", "y", "kd", 2.0 * kLoopBandwidth * kMassY);
 }
 
 // The thesis ellipse (eq. 2-68) under loop delay on the controller->actuator link, for the two
@@ -431,22 +432,22 @@ StudyPlan thesis_ellipse_delay() {
       netmc::v1::JobSpec job =
           thesis_job(trajectory, label.starts_with("gtcf-adrc") ? "gtcf-adrc" : std::string(label), run, 4.0);
       if (label == "gtcf-adrc-matched") {
-        job.mutable_controller()->mutable_gtcf_adrc()->set_observer_input_delay(mean_delay_periods[column]);
+        job::set_gain(*job.mutable_controller(), "gtcf_adrc", "observer_input_delay", mean_delay_periods[column]);
       }
       if (label == "gtcf-adrc-soft") {
-        auto& gains = *job.mutable_controller()->mutable_gtcf_adrc();
-        gains.set_wc(120.0);
-        gains.set_wm(60.0);
-        gains.set_woc(500.0);
-        gains.set_wom(250.0);
+        auto& c = *job.mutable_controller();
+        job::set_gain(c, "gtcf_adrc", "wc", 120.0);
+        job::set_gain(c, "gtcf_adrc", "wm", 60.0);
+        job::set_gain(c, "gtcf_adrc", "woc", 500.0);
+        job::set_gain(c, "gtcf_adrc", "wom", 250.0);
       }
       set_linmotor_adrc_gains(*job.mutable_controller());  // used by adrc, adrc+... only
       // PIDCCC: kp the largest of 2e3, 1e4, 3e4, 1e5, 3e5 V/m whose max error under
       // U(0.1, 0.5) ms delay stays within 2x of its no-delay value (3e5: 2.6 -> 148 um); the
       // difference term (kd per sample) does not matter at this period, so kd = 0.
-      job.mutable_controller()->mutable_pidccc()->set_kp(1e5);
-      job.mutable_controller()->mutable_pidccc()->set_ki(0.0);
-      job.mutable_controller()->mutable_pidccc()->set_kd(0.0);
+      job::set_gain(*job.mutable_controller(), "pidccc", "kp", 1e5);
+      job::set_gain(*job.mutable_controller(), "pidccc", "ki", 0.0);
+      job::set_gain(*job.mutable_controller(), "pidccc", "kd", 0.0);
       *job.mutable_downlink()->mutable_delay() = delay;
       plan.jobs.push_back(job);
     }
@@ -574,8 +575,8 @@ netmc::v1::JobSpec seed002_job(const netmc::v1::Trajectory& trajectory, double d
   auto& c = *job.mutable_controller();
   c.set_name(controller);
   c.set_estimator("steffensen");
-  c.mutable_mfa_dtsmc()->set_data_model("full");
-  c.mutable_mfac()->set_data_model("full");
+  job::set_gain_choice(c, "mfa_dtsmc", "data_model", "full");
+  job::set_gain_choice(c, "mfac", "data_model", "full");
   job.set_sample_period_s(1e-3);
   job.set_duration_s(duration_s);
   job.set_evaluation_start_s(1e-3);  // eq. 72/73 over the whole run

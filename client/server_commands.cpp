@@ -176,7 +176,8 @@ std::function<int()> add_submit_command(CLI::App& app) {
   return [flags]() -> int {
     const StudyPlan plan = plan_from_flags(flags->study);
     // Every job is checked before the first is sent: a bad one leaves nothing queued.
-    for (const auto& spec : plan.jobs) job::build_contour_job(spec);
+    // The server and its nodes open plugin and FMU files (their own copies): not checked here.
+    for (const auto& spec : plan.jobs) job::build_contour_job(spec, job::check_without_files());
     management::ManagementClient client(flags->server, kServerConnectTimeout);
     std::uint64_t request_id = 1;
     for (const auto& spec : plan.jobs) {

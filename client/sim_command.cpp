@@ -14,8 +14,9 @@
 #include "client/study_flags.hpp"
 #include "client/study_report.hpp"
 #include "client/study_runner.hpp"
-#include "plant/plant_catalog.hpp"
+#include "server/job/controller_registry.hpp"
 #include "server/job/job_builder.hpp"
+#include "server/job/plant_source.hpp"
 
 namespace netmc::cli {
 
@@ -28,6 +29,7 @@ std::function<int()> add_sim_command(CLI::App& app) {
     unsigned threads = 0;
     bool print_spec = false;
     bool list_presets = false;
+    bool list_controllers = false;
     std::string plant_parameters;
   };
   auto flags = std::make_shared<Flags>();
@@ -44,6 +46,9 @@ std::function<int()> add_sim_command(CLI::App& app) {
   sim->add_flag("--print-spec", flags->print_spec,
                 "Print the job spec of the study's first run as JSON (what --spec reads) and run nothing");
   sim->add_flag("--list-presets", flags->list_presets, "Print the names of the presets and run nothing");
+  sim->add_flag("--list-controllers", flags->list_controllers,
+                "Print every controller netmc runs (a Markdown table: names, role, gains flag, source, the plants "
+                "its defaults are tuned for) and run nothing");
   sim->add_option("--plant-parameters", flags->plant_parameters,
                   "Print the parameters --plant NAME:KEY=VALUE (and a spec's plant_axes) can change, and run nothing")
       ->type_name("NAME");
@@ -62,9 +67,13 @@ every run. Output files are written whole, after every run has finished.)");
   return [flags]() -> int {
     if (!flags->plant_parameters.empty()) {
       const std::string& name = flags->plant_parameters;
-      const auto parameters = plant::plant_parameters(name);  // throws naming the known plants
-      fmt::print("{} (input and disturbances in {}):\n", name, plant::plant_input_unit(name));
+      const auto parameters = job::job_plant_parameters(name);  // throws naming the known plants
+      fmt::print("{} (input and disturbances in {}):\n", name, job::job_plant_input_unit(name));
       for (const auto& p : parameters) fmt::print("  {:<28} {}\n", p.key, p.description);
+      return 0;
+    }
+    if (flags->list_controllers) {
+      fmt::print("{}", job::ControllerRegistry::global().markdown_table());
       return 0;
     }
     if (flags->list_presets) {

@@ -9,18 +9,16 @@
 #include <vector>
 
 #include "server/job/job_builder.hpp"
+#include "server/job/plant_source.hpp"
 
 namespace netmc::cli {
 namespace {
 
+using job::parse_keys;
+using job::trim;
+
 [[noreturn]] void fail(std::string_view field, const std::string& message) {
   throw std::invalid_argument(std::string(field) + ": " + message);
-}
-
-std::string_view trim(std::string_view text) {
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
-  return text;
 }
 
 struct KindSpec {
@@ -35,48 +33,6 @@ KindSpec split_kind(std::string_view text) {
   spec.kind = std::string(trim(text.substr(0, colon)));
   if (colon != std::string_view::npos) spec.argument = std::string(trim(text.substr(colon + 1)));
   return spec;
-}
-
-// Parses "a=1,b=2" and checks every key is allowed. The value of a key in `list_keys` may contain
-// commas itself ("points=0,0;1mm,0"): the items without '=' that follow it belong to it.
-std::map<std::string, std::string> parse_keys(std::string_view text, std::string_view field,
-                                              const std::vector<std::string>& allowed,
-                                              const std::vector<std::string>& list_keys = {}) {
-  std::map<std::string, std::string> keys;
-  std::string expected;
-  for (const auto& key : allowed) expected += (expected.empty() ? "" : ", ") + key;
-  std::size_t start = 0;
-  std::string list_key;  // the list-valued key being read
-  while (start <= text.size() && !text.empty()) {
-    const std::size_t comma = text.find(',', start);
-    const std::string_view item =
-        trim(text.substr(start, comma == std::string_view::npos ? text.size() - start : comma - start));
-    const std::size_t equals = item.find('=');
-    if (!item.empty() && equals == std::string_view::npos && !list_key.empty()) {
-      std::string& value = keys[list_key];
-      value.push_back(',');
-      value.append(item);
-      if (comma == std::string_view::npos) break;
-      start = comma + 1;
-      continue;
-    }
-    if (item.empty() || equals == std::string_view::npos) {
-      fail(field, "expected key=value, got '" + std::string(item) + "' (keys: " + expected + ")");
-    }
-    const std::string key(trim(item.substr(0, equals)));
-    bool known = false;
-    for (const auto& candidate : allowed) known = known || candidate == key;
-    if (!known) fail(field, "unknown key '" + key + "' (expected one of: " + expected + ")");
-    if (keys.contains(key)) fail(field, "key '" + key + "' given twice");
-    keys[key] = std::string(trim(item.substr(equals + 1)));
-    list_key.clear();
-    for (const auto& candidate : list_keys) {
-      if (candidate == key) list_key = key;
-    }
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
-  return keys;
 }
 
 double key_quantity(const std::map<std::string, std::string>& keys, const std::string& key,
@@ -173,64 +129,6 @@ void require_kind_argument(const KindSpec& spec, std::string_view field, const s
 }
 
 }  // namespace
-
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> items;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = text.find(',', start);
-    const std::string item(trim(std::string_view(text).substr(
-        start, comma == std::string::npos ? std::string::npos : comma - start)));
-    if (!item.empty()) items.push_back(item);
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return items;
-}
-
-double parse_quantity(std::string_view text, Quantity quantity, std::string_view field) {
-  text = trim(text);
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  const std::string_view unit = trim(std::string_view(end, static_cast<std::size_t>(text.data() + text.size() - end)));
-  const char* form = quantity == Quantity::length  ? "a length such as 10mm, 0.01 or 250um"
-                     : quantity == Quantity::time  ? "a duration such as 5ms, 0.005 or 800us"
-                     : quantity == Quantity::speed ? "a speed such as 20mm/s or 0.02"
-                     : quantity == Quantity::acceleration ? "an acceleration such as 500mm/s2 or 0.5"
-                                                          : "a number";
-  if (error != std::errc() || text.empty() || !std::isfinite(value)) {
-    fail(field, "expected " + std::string(form) + ", got '" + std::string(text) + "'");
-  }
-  double scale = 1.0;
-  if (unit.empty()) {
-    scale = 1.0;
-  } else if (quantity == Quantity::length && unit == "m") {
-    scale = 1.0;
-  } else if (quantity == Quantity::length && unit == "mm") {
-    scale = 1e-3;
-  } else if (quantity == Quantity::length && unit == "um") {
-    scale = 1e-6;
-  } else if (quantity == Quantity::time && unit == "s") {
-    scale = 1.0;
-  } else if (quantity == Quantity::time && unit == "ms") {
-    scale = 1e-3;
-  } else if (quantity == Quantity::time && unit == "us") {
-    scale = 1e-6;
-  } else if (quantity == Quantity::speed && unit == "m/s") {
-    scale = 1.0;
-  } else if (quantity == Quantity::speed && unit == "mm/s") {
-    scale = 1e-3;
-  } else if (quantity == Quantity::speed && unit == "um/s") {
-    scale = 1e-6;
-  } else if (quantity == Quantity::acceleration && (unit == "m/s2" || unit == "m/s^2")) {
-    scale = 1.0;
-  } else if (quantity == Quantity::acceleration && (unit == "mm/s2" || unit == "mm/s^2")) {
-    scale = 1e-3;
-  } else {
-    fail(field, "expected " + std::string(form) + ", got unit '" + std::string(unit) + "'");
-  }
-  return value * scale;
-}
 
 netmc::v1::Trajectory parse_trajectory(std::string_view text) {
   constexpr std::string_view field = "--trajectory";
@@ -394,99 +292,6 @@ netmc::v1::LossProfile parse_loss(std::string_view text, std::string_view flag) 
   return out;
 }
 
-void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains, std::string_view flag) {
-  const auto keys = parse_keys(text, flag, {"r0", "w0", "b0", "kp", "kd", "observer", "observer_input"});
-  for (const auto& [key, value] : keys) {
-    if (key == "observer") {
-      if (value != "euler" && value != "zoh") fail(flag, "observer expects euler or zoh, got '" + value + "'");
-      gains.set_observer(value);
-    } else if (key == "observer_input") {
-      if (value != "own" && value != "sent") fail(flag, "observer_input expects own or sent, got '" + value + "'");
-      gains.set_observer_sees_sent_command(value == "sent");
-    } else {
-      const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
-      if (key == "r0") gains.set_r0(number);
-      if (key == "w0") gains.set_w0(number);
-      if (key == "b0") gains.set_b0(number);
-      if (key == "kp") gains.set_kp(number);
-      if (key == "kd") gains.set_kd(number);
-    }
-  }
-}
-
-void parse_gtcf_adrc_gains(std::string_view text, netmc::v1::GtcfAdrcGains& gains) {
-  constexpr std::string_view flag = "--gtcf-adrc";
-  const auto keys = parse_keys(text, flag, {"wc", "wm", "wo", "woc", "wom", "observer", "delay"});
-  if (keys.contains("wo") && (keys.contains("woc") || keys.contains("wom"))) {
-    fail(flag, "wo sets both observers: give either wo or woc/wom");
-  }
-  for (const auto& [key, value] : keys) {
-    if (key == "observer") {
-      if (value != "euler" && value != "zoh") fail(flag, "observer expects euler or zoh, got '" + value + "'");
-      gains.set_observer(value);
-      continue;
-    }
-    const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
-    if (key == "delay") {
-      if (number < 0 || number != std::floor(number) || number > 100000) {
-        fail(flag, "delay expects a whole number of periods, got '" + value + "'");
-      }
-      gains.set_observer_input_delay(static_cast<std::uint32_t>(number));
-      continue;
-    }
-    if (!(number > 0.0)) fail(flag, key + " expects a positive bandwidth in rad/s, got '" + value + "'");
-    if (key == "wc") gains.set_wc(number);
-    if (key == "wm") gains.set_wm(number);
-    if (key == "wo" || key == "woc") gains.set_woc(number);
-    if (key == "wo" || key == "wom") gains.set_wom(number);
-  }
-}
-
-void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains) {
-  constexpr std::string_view flag = "--ilc";
-  const auto keys = parse_keys(text, flag, {"kcp", "kcd", "forgetting", "q", "lead"});
-  for (const auto& [key, value] : keys) {
-    const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
-    if (key == "kcp") gains.set_kcp(number);
-    if (key == "kcd") gains.set_kcd(number);
-    if (key == "forgetting") gains.set_forgetting(number);
-    if (key == "q") gains.set_q_cutoff_hz(number);
-    if (key == "lead") {
-      if (number < 0 || number != std::floor(number) || number > 1e6) {
-        fail(flag, "lead expects a whole number of samples, got '" + value + "'");
-      }
-      gains.set_lead_samples(static_cast<std::uint32_t>(number));
-    }
-  }
-}
-
-void parse_task_space_gains(std::string_view text, netmc::v1::TaskSpaceGains& gains) {
-  constexpr std::string_view flag = "--task-space";
-  const auto keys =
-      parse_keys(text, flag, {"init_filter", "wc", "wm", "lambda_c", "lambda_m", "k_c", "k_m", "ltcf_rotation", "cogging"});
-  for (const auto& [key, value] : keys) {
-    if (key == "init_filter" || key == "ltcf_rotation") {
-      if (value != "on" && value != "off") fail(flag, key + " expects on or off, got '" + value + "'");
-      if (key == "init_filter") gains.set_initialization_filter(value == "on");
-      if (key == "ltcf_rotation") gains.set_ltcf_rotation(value == "on");
-      continue;
-    }
-    const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
-    if (key == "cogging") {  // 0 turns the compensation off (thesis ch. 4, C1)
-      if (!(number >= 0.0)) fail(flag, "cogging expects a non-negative number, got '" + value + "'");
-      gains.set_cogging_adaptation(number);
-      continue;
-    }
-    if (!(number > 0.0)) fail(flag, key + " expects a positive number, got '" + value + "'");
-    if (key == "wc") gains.set_filter_wc(number);
-    if (key == "wm") gains.set_filter_wm(number);
-    if (key == "lambda_c") gains.set_lambda_c(number);
-    if (key == "lambda_m") gains.set_lambda_m(number);
-    if (key == "k_c") gains.set_k_c(number);
-    if (key == "k_m") gains.set_k_m(number);
-  }
-}
-
 netmc::v1::Position parse_position(std::string_view text, std::string_view flag) {
   const auto keys = parse_keys(text, flag, {"x", "y"});
   if (!keys.contains("x") || !keys.contains("y")) fail(flag, "expected x=LENGTH,y=LENGTH");
@@ -494,16 +299,6 @@ netmc::v1::Position parse_position(std::string_view text, std::string_view flag)
   position.set_x_m(parse_quantity(keys.at("x"), Quantity::length, std::string(flag) + " x"));
   position.set_y_m(parse_quantity(keys.at("y"), Quantity::length, std::string(flag) + " y"));
   return position;
-}
-
-void parse_pid_gains(std::string_view text, netmc::v1::PidGains& gains, std::string_view flag) {
-  const auto keys = parse_keys(text, flag, {"kp", "ki", "kd"});
-  for (const auto& [key, value] : keys) {
-    const double number = parse_quantity(value, Quantity::plain, std::string(flag) + " " + key);
-    if (key == "kp") gains.set_kp(number);
-    if (key == "ki") gains.set_ki(number);
-    if (key == "kd") gains.set_kd(number);
-  }
 }
 
 namespace {
@@ -533,6 +328,12 @@ std::string job_axis(const netmc::v1::JobSpec& job, std::string_view axis, std::
 }  // namespace
 
 void parse_plant(std::string_view text, netmc::v1::JobSpec& job) {
+  // fmu:PATH.fmu[:...] and plugin:PATH.so[:...]: the whole text names the plant; its options are
+  // the file's (server/fmu/fmu_plant_options.hpp, server/plugins/component_plugin_spec.hpp).
+  if (job::is_file_plant(trim(text))) {
+    job.set_plant(std::string(trim(text)));
+    return;
+  }
   const std::size_t colon = text.find(':');
   const std::string name(trim(text.substr(0, colon)));
   if (name.empty()) throw std::invalid_argument("--plant: expected NAME[:KEY=VALUE,...], got '" + std::string(text) + "'");

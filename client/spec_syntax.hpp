@@ -8,17 +8,14 @@
 #include <vector>
 
 #include "idl/job.pb.h"
+#include "server/job/quantity_text.hpp"
 
 namespace netmc::cli {
 
-enum class Quantity { length, time, speed, acceleration, plain };
-
-// "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
-std::vector<std::string> split_list(const std::string& text);
-
-// "10mm" -> 0.01 (length), "0.5ms" -> 5e-4 (time), "20mm/s" -> 0.02 (speed),
-// "0.5m/s2" -> 0.5 (acceleration; also m/s^2, mm/s2), "3" -> 3 (SI). `field` names the flag/key.
-double parse_quantity(std::string_view text, Quantity quantity, std::string_view field);
+// Quantities and key lists: server/job/quantity_text.hpp.
+using job::parse_quantity;
+using job::Quantity;
+using job::split_list;
 
 // --trajectory circle:r=10mm,cx=50mm,cy=50mm,period=8s | ellipse:a=..,b=..,cx=..,cy=..,period=..
 //              (ellipse and lissajous: feed=..,amax=..[,at=..] instead of period for a feed rate)
@@ -34,20 +31,10 @@ netmc::v1::Trajectory parse_trajectory(std::string_view text);
 netmc::v1::DelayProfile parse_delay(std::string_view text, std::string_view flag);
 // --loss none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]
 netmc::v1::LossProfile parse_loss(std::string_view text, std::string_view flag);
-// --adrc / --adrc-y r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent
-void parse_adrc_gains(std::string_view text, netmc::v1::AdrcGains& gains,
-                      std::string_view flag = "--adrc");
-// --gtcf-adrc wc=..,wm=..,wo=..|woc=..,wom=..,observer=euler|zoh,delay=PERIODS
-// (bandwidths in rad/s; delay: the observers see the task command this many periods late)
-void parse_gtcf_adrc_gains(std::string_view text, netmc::v1::GtcfAdrcGains& gains);
-// --ilc kcp=..,kcd=..,forgetting=..,q=..(Hz),lead=..(samples)
-void parse_ilc_gains(std::string_view text, netmc::v1::IlcGains& gains);
-// --task-space init_filter=on|off,wc=..,wm=.. (rad/s)
-void parse_task_space_gains(std::string_view text, netmc::v1::TaskSpaceGains& gains);
+// Controller gains: one flag per gains group of the controller registry
+// (server/job/controller_gains.hpp, parse_gain_flag).
 // --initial-position x=..,y=.. (lengths)
 netmc::v1::Position parse_position(std::string_view text, std::string_view flag);
-// --pidccc / --pid kp=..,ki=..,kd=..
-void parse_pid_gains(std::string_view text, netmc::v1::PidGains& gains, std::string_view flag);
 // --plant NAME[:[AXIS.]KEY=VALUE,...]: the plant, and parameter overrides for every axis of `job`
 // (KEY=VALUE) or for one (AXIS.KEY=VALUE), appended to job.plant_axes in order.
 void parse_plant(std::string_view text, netmc::v1::JobSpec& job);

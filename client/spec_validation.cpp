@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "server/job/job_builder.hpp"
+#include "server/job/legacy_spec.hpp"
 
 namespace netmc::cli {
 namespace {
@@ -27,19 +28,19 @@ bool ends_with(const std::string& text, const std::string& suffix) {
 Range range_of(const std::string& path, const std::string& name) {
   // sample_period_s, divergence_limit_m and the like may be 0: "use the default".
   static const std::set<std::string> positive{"radius_m", "period_s", "semi_axis_x_m", "semi_axis_y_m",
-                                              "r0", "w0", "b0", "scale_s", "shape"};
+                                              "scale_s", "shape"};
   static const std::set<std::string> probability{"p", "p_good_to_bad", "p_bad_to_good",
-                                                 "loss_in_good", "loss_in_bad", "forgetting"};
+                                                 "loss_in_good", "loss_in_bad"};
   static const std::set<std::string> any{"center_x_m", "center_y_m", "center_z_m", "x0_m", "y0_m", "x1_m", "y1_m",
                                          "start_angle_rad", "normal_x", "normal_y", "normal_z",
                                          "start_x", "start_y", "start_z",
-                                         // multi-sine terms; a dead zone's left break point; the
-                                         // dead-zone DIARC's theta (m_l b_l < 0), checked when built
-                                         "offset_m", "amplitude_m", "phase_rad", "left_break_v", "initial_estimate",
-                                         "lower", "upper",
+                                         // multi-sine terms; a dead zone's left break point
+                                         "offset_m", "amplitude_m", "phase_rad", "left_break_v",
                                          "value",  // a plant parameter (its plant checks its range)
                                          // a disturbance pushes either way
                                          "amplitude", "constant"};
+  // A controller's gains: their family's descriptor checks each when the job is built.
+  if (path.rfind("controller.gains.", 0) == 0) return Range::any;
   if (ends_with(path, "line.duration_s")) return Range::positive;
   if (positive.contains(name)) return Range::positive;
   if (probability.contains(name)) return Range::probability;
@@ -96,7 +97,14 @@ class Validator {
           fail(path.empty() ? oneof->name() : path, "give only one of: " + members);
         }
       }
-      if (field->is_repeated()) {
+      if (field->is_map()) {
+        // A map is an object whose keys are the map's (a gains group's name, a key, an axis).
+        if (!member.is_object()) fail(field_path, "expected an object {...}, got " + kind_of(member));
+        for (const auto& [map_key, map_value] : member.items()) {
+          if (map_key.empty() || map_key.size() > 64) fail(field_path, "expected keys of 1-64 characters");
+          single(map_value, field->message_type()->map_value(), field_path + "." + map_key);
+        }
+      } else if (field->is_repeated()) {
         if (!member.is_array()) fail(field_path, "expected a list [...], got " + kind_of(member));
         for (std::size_t i = 0; i < member.size(); ++i) {
           single(member[i], field, field_path + "[" + std::to_string(i) + "]");
@@ -182,7 +190,10 @@ class Validator {
 
 }  // namespace
 
-void validate_job_spec_json(const std::string& text, const std::string& origin) {
+void validate_job_spec_json(const std::string& original, const std::string& origin) {
+  // A 0.1 spec's typed gains are checked as the gains they stand for (unparsable text comes back
+  // unchanged, so a syntax error's line and column are the file's).
+  const std::string text = job::upgrade_legacy_spec_json(original);
   json document;
   try {
     document = json::parse(text);

@@ -7,6 +7,7 @@
 #include "client/presets.hpp"
 #include "client/spec_syntax.hpp"
 #include "client/spec_validation.hpp"
+#include "server/job/controller_registry.hpp"
 #include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
@@ -21,6 +22,20 @@ std::string read_file(const std::string& path) {
 }
 
 }  // namespace
+
+std::vector<std::string> split_controller_list(const std::string& text) {
+  std::vector<std::string> names;
+  for (auto& item : split_list(text)) {
+    // plugin:PATH.so:kp=1,kd=2: a KEY=VALUE after a plugin belongs to it, not to a run of its own
+    // (no controller's name has an '=').
+    if (!names.empty() && names.back().rfind("plugin:", 0) == 0 && item.find('=') != std::string::npos) {
+      names.back() += "," + item;
+    } else {
+      names.push_back(std::move(item));
+    }
+  }
+  return names;
+}
 
 StudyPlan plan_from_flags(const StudyFlags& f) {
   StudyPlan plan;
@@ -47,7 +62,7 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
   }
 
   if (!f.controllers.empty()) {
-    const auto names = split_list(f.controllers);
+    const auto names = split_controller_list(f.controllers);
     if (names.empty()) throw std::invalid_argument("--controller: expected NAME[,NAME...]");
     const netmc::v1::JobSpec base = plan.jobs.front();
     plan.jobs.clear();
@@ -99,28 +114,26 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     }
     if (!f.clock.empty()) job.set_clock(f.clock);
     if (!f.axes.empty()) {
-      job.clear_axes();
-      for (const auto& name : split_list(f.axes)) job.add_axes(name);
       try {
-        job::axis_names(job);
+        job::rename_axes(job, split_list(f.axes));
       } catch (const std::invalid_argument& error) {
         throw std::invalid_argument(std::string("--") + error.what());
       }
     }
     if (f.iterations != 0) job.set_iterations(static_cast<std::uint32_t>(f.iterations));
     if (f.seed >= 0) job.set_seed(static_cast<std::uint64_t>(f.seed));
-    if (!f.adrc.empty()) parse_adrc_gains(f.adrc, *job.mutable_controller()->mutable_adrc());
+    const auto& registry = job::ControllerRegistry::global();
+    const auto axes = job::axis_names(job);
+    for (const auto& [group_name, text] : f.gains) {
+      if (!text.empty()) job::parse_gain_flag(text, *registry.gain_group(group_name), axes, *job.mutable_controller());
+    }
     if (!f.adrc_y.empty()) {
-      parse_adrc_gains(f.adrc_y, *job.mutable_controller()->mutable_adrc_y(), "--adrc-y");
+      if (axes.size() < 2) throw std::invalid_argument("--adrc-y: the job has no second axis");
+      std::string entries;
+      for (const auto& item : split_list(f.adrc_y)) entries += (entries.empty() ? "" : ",") + axes[1] + "." + item;
+      job::parse_gain_flag(entries, *registry.gain_group("adrc"), axes, *job.mutable_controller());
     }
-    if (!f.gtcf_adrc.empty()) {
-      parse_gtcf_adrc_gains(f.gtcf_adrc, *job.mutable_controller()->mutable_gtcf_adrc());
-    }
-    if (!f.ilc.empty()) parse_ilc_gains(f.ilc, *job.mutable_controller()->mutable_ilccc());
-    if (!f.pidccc.empty()) parse_pid_gains(f.pidccc, *job.mutable_controller()->mutable_pidccc(), "--pidccc");
-    if (!f.pid.empty()) parse_pid_gains(f.pid, *job.mutable_controller()->mutable_pid(), "--pid");
     if (!f.estimator.empty()) job.mutable_controller()->set_estimator(f.estimator);
-    if (!f.task_space.empty()) parse_task_space_gains(f.task_space, *job.mutable_controller()->mutable_task_space());
     if (!f.initial_position.empty()) {
       *job.mutable_initial_position() = parse_position(f.initial_position, "--initial-position");
     }
@@ -145,14 +158,15 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
   if (!f.spec_file.empty()) {
     // Names (plant, controller, observer ...) are checked when the job is built: do it now so
     // the message names the file too.
-    const bool overridden = changes_setup || !f.controllers.empty() || !f.adrc.empty() ||
-                            !f.ilc.empty() || !f.pidccc.empty() || !f.pid.empty() ||
+    bool gains_given = !f.adrc_y.empty();
+    for (const auto& [group, text] : f.gains) gains_given = gains_given || !text.empty();
+    const bool overridden = changes_setup || !f.controllers.empty() || gains_given ||
                             !f.estimator.empty() || !f.deadline.empty() || !f.compute_delay.empty() ||
                             !f.command_limit.empty() || !f.divergence_limit.empty() || !f.clock.empty() ||
                             !f.axes.empty() || !f.plant.empty();
     for (const auto& job : plan.jobs) {
       try {
-        job::build_contour_job(job);
+        job::build_contour_job(job, job::check_without_files());  // files are opened where the job runs
       } catch (const std::invalid_argument& error) {
         throw std::invalid_argument(f.spec_file + (overridden ? " (with the flags given): " : ": ") + error.what());
       }
@@ -181,11 +195,7 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
                   "one axis: multi-sine:terms=80mm/0.5/-1.5708;70mm/0.4/-1.5708,offset=150mm,duration=20s[,period=10s] "
                   "(amplitude/frequency in Hz/phase in rad; the error is x - x_d)");
   app->add_option("--controller", flags.controllers,
-                  "AXIS[+COMPENSATOR][,...]: adrc, adrc+pidccc, adrc+ilccc, pid, pid+ilccc ...; task space: gtcf-sarc, "
-                  "ltcf-sarc, gtcf-darc, ltcf-darc, gtcf-diarc, ltcf-diarc, gtcf-darc-cogging, ltcf-darc-cogging, "
-                  "gtcf-adrc; paper 002: mfa-dtsmc, mfac; paper 004: ffpid, ffpid+lpccc, ffpid+qftccc; one axis "
-                  "(--trajectory multi-sine): axis-diarc, axis-diarc+nominal-inverse, axis-diarc+exact-inverse, "
-                  "axis-diarc-dead-zone, axis-avsc");
+                  "NAME[,NAME...], each a run: " + job::ControllerRegistry::global().names_help());
   app->add_option("--delay", flags.delay, "Loop delay on the controller->actuator link: none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=.. | pareto:scale=..,shape=.. | markov:good=A..B,bad=C..D,p_gb=..,p_bg=.. | trace:FILE.csv");
   app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);
   add_job_override_flags(app, flags);
@@ -219,14 +229,13 @@ void add_job_override_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--divergence-limit", flags.divergence_limit, "Contour error at which a run counts as unstable and stops (default 50mm)");
   app->add_option("--command-limit", flags.command_limit, "Command saturation |U| enforced at the axis (default: none)");
   app->add_option("--iterations", flags.iterations, "ILC iterations per run (1..100000)")->check(CLI::Range(1, 100000));
-  app->add_option("--adrc", flags.adrc, "ADRC gains: r0=..,w0=..,b0=..,kp=..,kd=..,observer=euler|zoh,observer_input=own|sent");
-  app->add_option("--adrc-y", flags.adrc_y, "The y axis's ADRC gains where they differ from --adrc (same keys)");
-  app->add_option("--gtcf-adrc", flags.gtcf_adrc, "Task-space ADRC bandwidths [rad/s]: wc=..,wm=..,wo=..|woc=..,wom=..,observer=euler|zoh,delay=PERIODS (observer input delay)");
-  app->add_option("--ilc", flags.ilc, "ILC gains: kcp=..,kcd=..,forgetting=..,q=HZ,lead=SAMPLES");
-  app->add_option("--pidccc", flags.pidccc, "PID cross-coupling gains: kp=..,ki=..,kd=..");
-  app->add_option("--pid", flags.pid, "Per-axis PID gains: kp=..,ki=..,kd=..");
+  // One flag per gains group of the controller registry: a new family's appears by itself.
+  for (const auto& group : job::ControllerRegistry::global().gain_groups()) {
+    app->add_option(group.flag, flags.gains[group.name], group.summary + ": " + group.syntax());
+  }
+  app->add_option("--adrc-y", flags.adrc_y, "The second axis's ADRC gains where they differ from --adrc (same keys; "
+                                            "the same as --adrc AXIS.KEY=..)");
   app->add_option("--estimator", flags.estimator, "Contour-error estimator of a cross-coupled controller: curvature | tangent | newton | steffensen");
-  app->add_option("--task-space", flags.task_space, "Task-space controllers: init_filter=on|off,wc=8,wm=1 (gtcf-*: initialization filter, rad/s); lambda_c=100,lambda_m=30,k_c=100,k_m=60 (SARC/DARC/DIARC gains); ltcf_rotation=on|off (ltcf-*: differentiate the turning frame); cogging=500 (*-darc-cogging: adaptation of the cogging harmonics, 0 = none)");
   app->add_option("--initial-position", flags.initial_position, "Where the axes rest at t = 0, x=..,y=.. (default: the trajectory's start)");
   app->add_option("--sensor", flags.sensor, "Position sensor: resolution=0.5um,noise=0.1um");
 }

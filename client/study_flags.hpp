@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,8 +17,10 @@ struct StudyFlags {
   std::string spec_file;
   std::string trajectory, plant, controllers, delay, uplink_delay, loss, uplink_loss;
   std::string sample_period, duration, deadline, compute_delay, divergence_limit, command_limit;
-  std::string adrc, adrc_y, gtcf_adrc, ilc, pidccc, pid, estimator, sensor, task_space,
-      initial_position;
+  // Each gains group's flag (--adrc, --ilc, --task-space, ...: the controller registry's), by group.
+  std::map<std::string, std::string> gains;
+  std::string adrc_y;  // --adrc-y: the second axis's ADRC (what --adrc y.KEY=.. says)
+  std::string estimator, sensor, initial_position;
   int iterations = 0;
   long long seed = -1;
   std::vector<std::string> disturbances;  // --disturbance, one per axis
@@ -33,6 +36,9 @@ void add_study_flags(CLI::App* app, StudyFlags& flags);
 // other than the downlink delay ...): shared with `netmc sweep`, whose grid axes replace the rest.
 void add_job_override_flags(CLI::App* app, StudyFlags& flags);
 // Throws std::invalid_argument naming the flag or field.
+// --controller NAME[,NAME...]: the runs' controllers, a plugin's KEY=VALUE settings kept with it
+// ("plugin:lib.so:kp=1,kd=2,adrc" is two runs).
+std::vector<std::string> split_controller_list(const std::string& text);
 StudyPlan plan_from_flags(const StudyFlags& flags);
 
 }  // namespace netmc::cli

@@ -59,6 +59,16 @@ std::string input_unit(const std::string& plant_description) {
   }
 }
 
+// A run whose axes did not follow the reference has no contour error worth a number (an axis
+// standing on a closed curve has none): say so, with the tracking error that shows it.
+std::string not_following(const netmc::v1::IterationMetrics& m) {
+  double tracking_max_m = 0.0;
+  for (const double value : m.tracking_max_m()) tracking_max_m = std::max(tracking_max_m, value);
+  return fmt::format("did not follow the reference: an axis covered less than half of its path (tracking "
+                     "error up to {:.3f} mm); its contour error is no result",
+                     tracking_max_m * 1e3);
+}
+
 // A paper value in um, or "-" where the paper gives none (NaN).
 std::string paper_micrometres(double metres) {
   return std::isfinite(metres) ? fmt::format("{:.2f}", metres * 1e6) : std::string("-");
@@ -79,6 +89,10 @@ void print_steady_table(std::ostream& out, const StudyPlan& plan,
     const auto& first = last(first_on_trajectory(outcomes, outcome));
     if (m.diverged()) {
       fmt::print(out, "{:<{}} unstable at t = {:.3f} s\n", outcome.result.label(), width, m.diverged_at_s());
+      continue;
+    }
+    if (m.did_not_follow()) {
+      fmt::print(out, "{:<{}} {}\n", outcome.result.label(), width, not_following(m));
       continue;
     }
     if (!m.has_e_rms_steady_m()) {  // no sample in the window
@@ -135,6 +149,7 @@ void print_steady_sweep(std::ostream& out, const std::vector<RunOutcome>& outcom
       if (found != outcomes.end()) {
         const auto& m = last(*found);
         cell = m.diverged()                ? fmt::format("unstable at {:.2f} s", m.diverged_at_s())
+               : m.did_not_follow()        ? std::string("did not follow")
                : !m.has_e_rms_steady_m()   ? std::string("no steady window")
                                            : fmt::format("{:.2f} / {:.2f}", m.e_rms_steady_m() * 1e6, m.e_max_steady_m() * 1e6);
       }
@@ -179,6 +194,10 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
     if (m.diverged()) {
       fmt::print(out, "{:<18} unstable: contour error beyond the divergence limit at t = {:.3f} s of iteration {}\n",
                  outcome.result.label(), m.diverged_at_s(), m.iteration());
+      continue;
+    }
+    if (m.did_not_follow()) {
+      fmt::print(out, "{:<18} {}\n", outcome.result.label(), not_following(m));
       continue;
     }
     fmt::print(out, "{:<18} {:>11.4f} {:>11.3f} {:>11.2f} {:>9.3f} {:>9.3f}  {:>6.3f}/{:>6.3f}/{:>6.3f}",

@@ -168,7 +168,7 @@ std::string sweep_json(const std::vector<SweepConfiguration>& grid,
 void print_sweep_summary(std::ostream& out, const std::vector<SweepConfiguration>& grid,
                          const std::vector<RunOutcome>& outcomes) {
   // (base, delay) -> run -> (sum of e_max over seeds, count, unstable count)
-  struct Cell { double sum_m = 0.0; int count = 0; int unstable = 0; };
+  struct Cell { double sum_m = 0.0; int count = 0; int unstable = 0; int not_following = 0; };
   std::vector<std::string> runs;
   std::map<std::pair<std::string, double>, std::map<std::string, Cell>> table;
   std::vector<std::pair<std::string, double>> row_order;
@@ -183,13 +183,15 @@ void print_sweep_summary(std::ostream& out, const std::vector<SweepConfiguration
     Cell& cell = table[row][configuration.label];
     if (last.diverged()) {
       ++cell.unstable;
+    } else if (last.did_not_follow()) {
+      ++cell.not_following;  // its e_max is no result (study_report.cpp)
     } else {
       cell.sum_m += last.e_max_m();
       ++cell.count;
     }
   }
   fmt::print(out, "e_max [mm] of the last iteration, mean over seeds (u: unstable in every seed, "
-                  "*: unstable in some)\n\n");
+                  "*: unstable in some; n: did not follow the reference in every seed, +: in some)\n\n");
   fmt::print(out, "{:<16} {:>13}", "base", "delay max [ms]");
   for (const auto& run : runs) fmt::print(out, " {:>17}", run);
   fmt::print(out, "\n");
@@ -204,9 +206,10 @@ void print_sweep_summary(std::ostream& out, const std::vector<SweepConfiguration
       }
       const Cell& cell = found->second;
       if (cell.count == 0) {
-        fmt::print(out, " {:>17}", "u");
+        fmt::print(out, " {:>17}", cell.unstable > 0 ? "u" : "n");
       } else {
-        fmt::print(out, " {:>16.4f}{}", cell.sum_m / cell.count * 1e3, cell.unstable > 0 ? "*" : " ");
+        fmt::print(out, " {:>16.4f}{}", cell.sum_m / cell.count * 1e3,
+                   cell.unstable > 0 ? "*" : cell.not_following > 0 ? "+" : " ");
       }
     }
     fmt::print(out, "\n");

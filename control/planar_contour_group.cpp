@@ -51,12 +51,5 @@ const GroupCycle& PlanarGroupController::step(std::size_t cycle, const GroupRefe
   return cycle_;
 }
 
-std::unique_ptr<GroupController> make_planar_group_controller(std::string_view name,
-                                                              const ControllerSettings& settings,
-                                                              double sample_period_s,
-                                                              const ReferenceTrajectory& trajectory) {
-  return std::make_unique<PlanarGroupController>(
-      make_contour_controller(name, settings, sample_period_s, trajectory));
-}
 
 }  // namespace netmc::control

@@ -1,13 +1,12 @@
 #pragma once
 // Two-axis contour groups: a planar trajectory and any planar contouring controller
-// (controller_catalog.hpp) seen through the n-axis group interfaces, values unchanged.
+// (server/job/controllers/) seen through the n-axis group interfaces, values unchanged.
 
 #include <memory>
 #include <string_view>
 
 #include "control/contour_controller.hpp"
 #include "control/contour_group.hpp"
-#include "control/controller_catalog.hpp"
 #include "control/trajectory/reference_trajectory.hpp"
 
 namespace netmc::control {
@@ -44,11 +43,5 @@ class PlanarGroupController final : public GroupController {
   bool has_estimates_ = false;
   GroupCycle cycle_;
 };
-
-// Throws std::invalid_argument("controller: ...") for an unknown name or invalid gain.
-std::unique_ptr<GroupController> make_planar_group_controller(std::string_view name,
-                                                              const ControllerSettings& settings,
-                                                              double sample_period_s,
-                                                              const ReferenceTrajectory& trajectory);
 
 }  // namespace netmc::control

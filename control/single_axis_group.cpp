@@ -44,10 +44,5 @@ const GroupCycle& TrackingGroupController::step(std::size_t cycle, const GroupRe
   return cycle_;
 }
 
-std::unique_ptr<GroupController> make_tracking_group_controller(std::string_view name,
-                                                                const ControllerSettings& settings,
-                                                                double sample_period_s) {
-  return std::make_unique<TrackingGroupController>(make_tracking_controller(name, settings, sample_period_s));
-}
 
 }  // namespace netmc::control

@@ -9,7 +9,6 @@
 
 #include "control/axis/tracking_controller.hpp"
 #include "control/contour_group.hpp"
-#include "control/controller_catalog.hpp"
 #include "control/trajectory/multi_sine_reference.hpp"
 
 namespace netmc::control {
@@ -45,11 +44,5 @@ class TrackingGroupController final : public GroupController {
   bool has_estimates_ = false;
   GroupCycle cycle_;
 };
-
-// The controllers a one-axis group runs (make_tracking_controller). Throws
-// std::invalid_argument ("controller: ...") for another name or an invalid gain.
-std::unique_ptr<GroupController> make_tracking_group_controller(std::string_view name,
-                                                                const ControllerSettings& settings,
-                                                                double sample_period_s);
 
 }  // namespace netmc::control

@@ -61,18 +61,5 @@ std::string SpatialSarcGroupController::describe() const {
          number(g.feedback[2]) + "), F_M = " + number(g.uncertainty_bound[0]) + " V";
 }
 
-std::unique_ptr<GroupController> make_spatial_group_controller(std::string_view name,
-                                                               const ControllerSettings& settings,
-                                                               double sample_period_s,
-                                                               std::shared_ptr<const SpatialCircle> circle) {
-  if (name != "gtcf-sarc") {
-    throw std::invalid_argument("controller: a three-axis contour runs gtcf-sarc, got '" + std::string(name) + "'");
-  }
-  try {
-    return std::make_unique<SpatialSarcGroupController>(settings.spatial_sarc, sample_period_s, std::move(circle));
-  } catch (const std::invalid_argument& error) {
-    throw std::invalid_argument(std::string("controller: ") + error.what());
-  }
-}
 
 }  // namespace netmc::control

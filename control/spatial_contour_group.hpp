@@ -6,7 +6,6 @@
 #include <string_view>
 
 #include "control/contour_group.hpp"
-#include "control/controller_catalog.hpp"
 #include "control/trajectory/spatial_circle.hpp"
 #include "control/task_space/spatial_sarc.hpp"
 
@@ -46,12 +45,5 @@ class SpatialSarcGroupController final : public GroupController {
   SpatialSarc controller_;
   GroupCycle cycle_;
 };
-
-// The controllers a three-axis group runs: gtcf-sarc. Throws std::invalid_argument
-// ("controller: ...") for another name or an invalid gain.
-std::unique_ptr<GroupController> make_spatial_group_controller(std::string_view name,
-                                                               const ControllerSettings& settings,
-                                                               double sample_period_s,
-                                                               std::shared_ptr<const SpatialCircle> circle);
 
 }  // namespace netmc::control

@@ -395,6 +395,10 @@ SecondOrderAxisParameters seed001_axis_parameters(std::size_t axis) {
   return p;
 }
 
+bool is_file_plant(std::string_view name) {
+  return name.substr(0, 4) == "fmu:" || name.substr(0, 7) == "plugin:";
+}
+
 std::vector<std::string> plant_names() { return {std::begin(kNames), std::end(kNames)}; }
 
 std::vector<PlantParameter> plant_parameters(std::string_view name) {

@@ -22,6 +22,10 @@ struct AxisSet {
 // "seed001", "ballscrew", "linmotor", "stage004", "linmotor-flex", "hiwin".
 std::vector<std::string> plant_names();
 
+// A plant read from a file, fmu:PATH.fmu[:...] or plugin:PATH.so[:...]: not the catalog's (the
+// job layer makes it, server/job/plant_source.hpp); the whole text is its name.
+bool is_file_plant(std::string_view name);
+
 // A parameter of a named plant that a job may change per axis (a payload, a friction level).
 struct PlantParameter {
   std::string key;          // e.g. "load_kg"

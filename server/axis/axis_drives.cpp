@@ -29,6 +29,24 @@ drive::AxisLimits rating_limits(const std::string& plant) {
   return limits;
 }
 
+// Hardware, and models netmc has no rating of, run only inside limits the operator gave.
+void require_limits(const drive::AxisLimits& limits, const std::string& axis, const drive::DriveSpec& spec,
+                    const std::string& what) {
+  std::string missing;
+  if (std::isinf(limits.command)) missing += " a command limit (--command-limit),";
+  if (std::isinf(limits.position_min_m) || std::isinf(limits.position_max_m)) {
+    missing += " a position window (--position-window),";
+  }
+  if (std::isinf(limits.velocity_m_s)) missing += " a velocity limit (--velocity-limit),";
+  if (!missing.empty()) {
+    missing.pop_back();
+    throw std::invalid_argument("axis " + axis + " (" + spec.describe().substr(0, 200) + "): " + what + " needs" +
+                                missing + " from the flags" +
+                                (spec.kind == drive::DriveSpec::Kind::simulated ? "" : " or its map file") +
+                                "; refusing to start without them");
+  }
+}
+
 }  // namespace
 
 std::string node_plant(const std::map<std::string, drive::DriveSpec>& specs, const std::string& plant_flag) {
@@ -52,7 +70,11 @@ std::map<std::string, AxisDrive> open_axis_drives(const std::map<std::string, dr
     AxisDrive entry;
     entry.spec = spec;
     const auto flags = flag_limits.count(axis) ? flag_limits.at(axis) : drive::AxisLimits{};
-    if (spec.kind == drive::DriveSpec::Kind::simulated) {
+    if (spec.kind == drive::DriveSpec::Kind::simulated && plant::is_file_plant(spec.plant())) {
+      // An FMU's or a plugin's model has no rating netmc knows: its limits come from the flags.
+      entry.limits = flags;
+      require_limits(entry.limits, axis, spec, "a plant read from a file");
+    } else if (spec.kind == drive::DriveSpec::Kind::simulated) {
       // Overrides must name the plant's keys: checked now, not at the first job.
       const auto keys = plant::plant_parameters(spec.plant());
       for (const auto& [key, value] : spec.plant_overrides()) {
@@ -76,18 +98,7 @@ std::map<std::string, AxisDrive> open_axis_drives(const std::map<std::string, dr
       }
       entry.hardware->write_quick_stop_deceleration(settings.quick_stop_deceleration_m_s2);
       entry.limits = flags.or_else(entry.hardware->configured_limits());
-      std::string missing;
-      if (std::isinf(entry.limits.command)) missing += " a command limit (--command-limit),";
-      if (std::isinf(entry.limits.position_min_m) || std::isinf(entry.limits.position_max_m)) {
-        missing += " a position window (--position-window),";
-      }
-      if (std::isinf(entry.limits.velocity_m_s)) missing += " a velocity limit (--velocity-limit),";
-      if (!missing.empty()) {
-        missing.pop_back();
-        throw std::invalid_argument("axis " + axis + " (" + spec.describe() +
-                                    "): a drive that is not simulated needs" + missing +
-                                    " from the flags or its map file; refusing to start without them");
-      }
+      require_limits(entry.limits, axis, spec, "a drive that is not simulated");
     }
     entry.limits.validate();
     drives.emplace(axis, std::move(entry));

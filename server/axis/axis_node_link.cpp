@@ -386,7 +386,11 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
                                 config_.plant + "'");
   }
   const AxisDrive& axis_drive = config_.drives.at(begin.axis());
-  const sim::ContourJob job = job::build_contour_job(with_node_overrides(spec, begin.axis(), axis_drive));
+  // The node's plant (its own --plant, equal to the job's) is built here; the controller runs on
+  // the server and a plugin's file is not opened here.
+  job::JobBuildOptions build;
+  build.controller_plugins.load = false;
+  const sim::ContourJob job = job::build_contour_job(with_node_overrides(spec, begin.axis(), axis_drive), build);
   const auto job_axes = job::axis_names(spec);
   const auto it = std::find(job_axes.begin(), job_axes.end(), begin.axis());
   if (it == job_axes.end()) throw std::invalid_argument("axis " + begin.axis() + " is not an axis of the job");

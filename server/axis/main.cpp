@@ -14,10 +14,11 @@
 #include "server/axis/lockstep_axis_node.hpp"
 #include "server/axis/realtime_axis_node.hpp"
 #include "server/dds/dds_options_cli.hpp"
-#include "server/job/job_builder.hpp"
 #include "plant/plant_catalog.hpp"
 #include "server/axis/axis_drives.hpp"
 #include "server/drive/drive_spec.hpp"
+#include "server/job/job_builder.hpp"
+#include "server/job/plant_source.hpp"
 #include "server/log/process_log.hpp"
 #include "server/realtime/realtime_options_cli.hpp"
 
@@ -148,7 +149,13 @@ int main(int argc, char** argv) {
       if (plant.empty() && spec.rfind("sim:", 0) == 0) plant = netmc::drive::parse_drive_spec(spec).plant();
     }
     if (plant.empty()) plant = "seed001";
-    netmc::plant::plant_rating(plant);  // a known plant, or the catalog's message
+    // A known plant, or the catalog's message; a plant from a file is opened and checked now.
+    if (netmc::plant::is_file_plant(plant)) {
+      // As a contour job builds it (two axes, three for a three-axis node).
+      netmc::job::make_job_plant_set(plant, config.axes.size() == 3 ? 3 : 2);
+    } else {
+      netmc::plant::plant_rating(plant);
+    }
     const auto drive_specs = netmc::drive::parse_drive_flags(drive_flags, config.axes, plant);
     config.plant = netmc::axis::node_plant(drive_specs, plant);
     bool hardware = false;

@@ -7,6 +7,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "plant/plant_catalog.hpp"
+
 namespace netmc::drive {
 namespace {
 
@@ -41,12 +43,16 @@ std::string DriveSpec::describe() const {
   return text;
 }
 
-std::string DriveSpec::plant() const { return text.substr(0, text.find(':')); }
+std::string DriveSpec::plant() const {
+  // An FMU's or a plugin's plant: its whole text (its options are the file's).
+  if (plant::is_file_plant(text)) return text;
+  return text.substr(0, text.find(':'));
+}
 
 std::vector<std::pair<std::string, double>> DriveSpec::plant_overrides() const {
   std::vector<std::pair<std::string, double>> out;
   const std::size_t colon = text.find(':');
-  if (kind != Kind::simulated || colon == std::string::npos) return out;
+  if (kind != Kind::simulated || colon == std::string::npos || plant::is_file_plant(text)) return out;
   std::string rest = text.substr(colon + 1);
   std::size_t start = 0;
   while (start <= rest.size()) {

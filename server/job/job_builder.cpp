@@ -21,6 +21,10 @@
 #include "control/trajectory/multi_sine_reference.hpp"
 #include "control/trajectory/spatial_circle.hpp"
 #include "plant/plant_catalog.hpp"
+#include "server/job/controller_registry.hpp"
+#include "server/job/dead_zone_spec.hpp"
+#include "server/job/legacy_spec.hpp"
+#include "server/job/plant_source.hpp"
 
 namespace netmc::job {
 namespace {
@@ -273,127 +277,6 @@ sim::LinkProfile build_link(const netmc::v1::LinkProfile& link, const std::strin
   return out;
 }
 
-control::Discretization build_discretization(const std::string& observer, control::Discretization fallback,
-                                             const std::string& field) {
-  if (observer.empty()) return fallback;
-  if (observer == "euler") return control::Discretization::forward_euler;
-  if (observer == "zoh") return control::Discretization::zero_order_hold;
-  throw std::invalid_argument(field + ": expected 'euler' or 'zoh', got '" + observer + "'");
-}
-
-// The fields set in `a` over `base`.
-control::AdrcGains build_adrc(const netmc::v1::AdrcGains& a, control::AdrcGains base,
-                              const std::string& field) {
-  if (a.has_r0()) base.td_speed_factor = a.r0();
-  if (a.has_w0()) base.observer_bandwidth = a.w0();
-  if (a.has_b0()) base.input_gain = a.b0();
-  if (a.has_kp()) base.kp = a.kp();
-  if (a.has_kd()) base.kd = a.kd();
-  base.observer_discretization =
-      build_discretization(a.observer(), base.observer_discretization, field + ".observer");
-  if (a.observer_sees_sent_command()) base.observer_sees_sent_command = true;
-  return base;
-}
-
-control::MfaDtsmcGains build_mfa_dtsmc(const netmc::v1::MfaDtsmcGains& m, control::MfaDtsmcGains g,
-                                       const std::string& field = "controller.mfa_dtsmc") {
-  auto& e = g.estimator;
-  auto& t = g.sliding;
-  if (m.has_mu()) e.mu = m.mu();
-  if (m.has_eta()) e.eta = m.eta();
-  if (m.has_sigma()) e.sigma = m.sigma();
-  if (m.has_gamma()) e.gamma = m.gamma();
-  if (m.has_tau()) e.tau = m.tau();
-  if (m.has_rho()) e.rho = m.rho();
-  if (m.has_epsilon()) e.epsilon = m.epsilon();
-  if (m.has_phi_initial()) e.phi_initial = m.phi_initial();
-  if (m.has_psi_initial()) e.psi_initial = m.psi_initial();
-  if (m.has_d0()) e.disturbance_bound = m.d0();
-  if (m.has_lambda1()) t.lambda1 = m.lambda1();
-  if (m.has_lambda2()) t.lambda2 = m.lambda2();
-  if (m.has_alpha()) t.alpha = m.alpha();
-  if (m.has_beta()) t.beta = m.beta();
-  if (m.has_q()) t.q = m.q();
-  if (m.has_delta1()) t.delta1 = m.delta1();
-  if (m.has_delta2()) t.delta2 = m.delta2();
-  if (m.has_lambda()) t.lambda = m.lambda();
-  if (m.has_lambda_s()) g.switching_gain = m.lambda_s();
-  if (m.has_delta()) g.contour_weight = m.delta();
-  if (m.has_data_model()) g.data_model = control::parse_data_model_form(m.data_model(), field + ".data_model");
-  return g;
-}
-
-control::CompactFormMfacGains build_mfac(const netmc::v1::MfacGains& m, control::CompactFormMfacGains g,
-                                         const std::string& field = "controller.mfac") {
-  if (m.has_mu()) g.mu = m.mu();
-  if (m.has_lambda()) g.lambda = m.lambda();
-  if (m.has_rho()) g.rho = m.rho();
-  if (m.has_eta()) g.eta = m.eta();
-  if (m.has_epsilon()) g.epsilon = m.epsilon();
-  if (m.has_delta()) g.contour_weight = m.delta();
-  if (m.has_phi_initial()) g.phi_initial = m.phi_initial();
-  if (m.has_data_model()) g.data_model = control::parse_data_model_form(m.data_model(), field + ".data_model");
-  return g;
-}
-
-control::PidAxisGains build_pid(const netmc::v1::PidGains& p, control::PidAxisGains g) {
-  if (p.has_kp()) g.kp = p.kp();
-  if (p.has_ki()) g.ki = p.ki();
-  if (p.has_kd()) g.kd = p.kd();
-  return g;
-}
-
-// A gain the spec sets, checked; the error names its field.
-void set_positive(bool has, double value, double& target, const std::string& field) {
-  if (!has) return;
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(field + ": expected a positive finite number, got " + fmt::format("{:g}", value));
-  }
-  target = value;
-}
-void set_finite(bool has, double value, double& target, const std::string& field) {
-  if (!has) return;
-  if (!std::isfinite(value)) throw std::invalid_argument(field + ": expected a finite number, got " + fmt::format("{:g}", value));
-  target = value;
-}
-
-// Paper 004's per-axis loop: the fields set in `f` over the axis's table values.
-control::FeedforwardPidGains build_feedforward_pid(const netmc::v1::FeedforwardPidGains& f,
-                                                   control::FeedforwardPidGains g, const std::string& field) {
-  set_positive(f.has_mass_kg(), f.mass_kg(), g.mass_kg, field + ".mass_kg");
-  set_positive(f.has_bandwidth_hz(), f.bandwidth_hz(), g.bandwidth_hz, field + ".bandwidth_hz");
-  set_positive(f.has_alpha(), f.alpha(), g.alpha, field + ".alpha");
-  set_positive(f.has_low_pass_damping(), f.low_pass_damping(), g.low_pass_damping, field + ".low_pass_damping");
-  set_finite(f.has_feedforward_fraction(), f.feedforward_fraction(), g.feedforward_fraction,
-             field + ".feedforward_fraction");
-  return g;
-}
-
-control::FilteredPidCrossCouplingGains build_low_pass_pid(const netmc::v1::LowPassPidGains& l,
-                                                          control::FilteredPidCrossCouplingGains g) {
-  const std::string field = "controller.lpccc";
-  set_finite(l.has_kp(), l.kp(), g.kp, field + ".kp");
-  set_finite(l.has_ki(), l.ki(), g.ki, field + ".ki");
-  set_finite(l.has_kd(), l.kd(), g.kd, field + ".kd");
-  set_positive(l.has_low_pass_hz(), l.low_pass_hz(), g.low_pass_hz, field + ".low_pass_hz");
-  set_positive(l.has_low_pass_damping(), l.low_pass_damping(), g.low_pass_damping, field + ".low_pass_damping");
-  return g;
-}
-
-// A dead zone of thesis eq. 5-2 in volts (break points, slopes) as the inverse's estimate.
-control::DeadZoneEstimate build_dead_zone(const netmc::v1::DeadZoneSpec& d, const std::string& field) {
-  const auto within = [&](double value, double low, double high, const char* name, const char* form) {
-    if (!(value >= low && value <= high)) {
-      throw std::invalid_argument(field + "." + name + ": expected " + form + ", got " + fmt::format("{:g}", value));
-    }
-  };
-  within(d.right_break_v(), 0.0, 1e3, "right_break_v", "a voltage in [0, 1000]");
-  within(d.left_break_v(), -1e3, 0.0, "left_break_v", "a voltage in [-1000, 0]");
-  within(d.right_slope(), 1e-6, 1e6, "right_slope", "a slope in [1e-6, 1e6]");
-  within(d.left_slope(), 1e-6, 1e6, "left_slope", "a slope in [1e-6, 1e6]");
-  return {d.right_slope(), d.right_slope() * d.right_break_v(), d.left_slope(), d.left_slope() * d.left_break_v()};
-}
-
 // controller.dead_zone_inverse by axis name, in the group's order (none: no gap, slope 1).
 std::vector<control::DeadZoneEstimate> build_dead_zone_inverse(const netmc::v1::JobSpec& spec) {
   const auto& entries = spec.controller().dead_zone_inverse();
@@ -413,119 +296,6 @@ std::vector<control::DeadZoneEstimate> build_dead_zone_inverse(const netmc::v1::
     out[index] = build_dead_zone(entries[i].dead_zone(), field + ".dead_zone");
   }
   return out;
-}
-
-control::ControllerSettings build_settings(const netmc::v1::ControllerSpec& c) {
-  control::ControllerSettings s;
-  s.adrc = build_adrc(c.adrc(), s.adrc, "controller.adrc");
-  if (c.has_adrc_y()) s.adrc_y = build_adrc(c.adrc_y(), s.adrc, "controller.adrc_y");
-  const auto& g = c.gtcf_adrc();
-  if (g.has_wc()) s.gtcf_adrc.loop_bandwidth[0] = g.wc();
-  if (g.has_wm()) s.gtcf_adrc.loop_bandwidth[1] = g.wm();
-  if (g.has_woc()) s.gtcf_adrc.observer_bandwidth[0] = g.woc();
-  if (g.has_wom()) s.gtcf_adrc.observer_bandwidth[1] = g.wom();
-  s.gtcf_adrc.discretization =
-      build_discretization(g.observer(), s.gtcf_adrc.discretization, "controller.gtcf_adrc.observer");
-  if (g.observer_input_delay() > 100000) {
-    throw std::invalid_argument("controller.gtcf_adrc.observer_input_delay: expected at most 100000 periods");
-  }
-  s.gtcf_adrc.observer_input_delay = g.observer_input_delay();
-  s.pid = build_pid(c.pid(), s.pid);
-  if (c.has_pid_y()) s.pid_y = build_pid(c.pid_y(), s.pid);
-  s.mfa_dtsmc = build_mfa_dtsmc(c.mfa_dtsmc(), s.mfa_dtsmc);
-  if (c.has_mfa_dtsmc_y()) s.mfa_dtsmc_y = build_mfa_dtsmc(c.mfa_dtsmc_y(), s.mfa_dtsmc, "controller.mfa_dtsmc_y");
-  s.mfac = build_mfac(c.mfac(), s.mfac);
-  if (c.has_mfac_y()) s.mfac_y = build_mfac(c.mfac_y(), s.mfac, "controller.mfac_y");
-  if (c.pidccc().has_kp()) s.pidccc.kp = c.pidccc().kp();
-  if (c.pidccc().has_ki()) s.pidccc.ki = c.pidccc().ki();
-  if (c.pidccc().has_kd()) s.pidccc.kd = c.pidccc().kd();
-  s.ffpid_x = build_feedforward_pid(c.ffpid_x(), s.ffpid_x, "controller.ffpid_x");
-  s.ffpid_y = build_feedforward_pid(c.ffpid_y(), s.ffpid_y, "controller.ffpid_y");
-  s.lpccc = build_low_pass_pid(c.lpccc(), s.lpccc);
-  const auto& a = c.axis_diarc();
-  set_positive(a.has_lambda(), a.lambda(), s.axis_diarc.lambda, "controller.axis_diarc.lambda");
-  set_positive(a.has_feedback(), a.feedback(), s.axis_diarc.feedback, "controller.axis_diarc.feedback");
-  set_positive(a.has_disturbance_adaptation(), a.disturbance_adaptation(), s.axis_diarc.disturbance_adaptation,
-               "controller.axis_diarc.disturbance_adaptation");
-  set_positive(a.has_disturbance_bound(), a.disturbance_bound(), s.axis_diarc.disturbance_bound,
-               "controller.axis_diarc.disturbance_bound");
-  if (a.has_exact_dead_zone()) s.exact_dead_zone = build_dead_zone(a.exact_dead_zone(), "controller.axis_diarc.exact_dead_zone");
-  const auto theta = [](const google::protobuf::RepeatedField<double>& values, control::DeadZoneTheta& target,
-                        const std::string& field) {
-    if (values.empty()) return;
-    if (values.size() != 6) {
-      throw std::invalid_argument(field + ": expected 6 numbers [B, A, m_r, m_r b_r, m_l, m_l b_l], got " +
-                                  std::to_string(values.size()));
-    }
-    for (int i = 0; i < 6; ++i) {
-      if (!std::isfinite(values[i]) || std::abs(values[i]) > 1e6) {
-        throw std::invalid_argument(field + ": expected finite numbers within +-1e6");
-      }
-      target[i] = values[i];
-    }
-  };
-  theta(a.initial_estimate(), s.dead_zone_diarc.initial_estimate, "controller.axis_diarc.initial_estimate");
-  theta(a.lower(), s.dead_zone_diarc.lower, "controller.axis_diarc.lower");
-  theta(a.upper(), s.dead_zone_diarc.upper, "controller.axis_diarc.upper");
-  if (!a.lower().empty() || !a.upper().empty()) {
-    // Lemma 5.2: beyond H = the widest spread of m_r b_r or m_l b_l over the box, the demand is
-    // outside the gap whatever the estimates (the thesis's H = 2 is this for its box 5-53).
-    const auto& box = s.dead_zone_diarc;
-    box.validate();
-    s.dead_zone_diarc.estimation_threshold = std::max(box.upper[3] - box.lower[3], box.upper[5] - box.lower[5]);
-  }
-  const auto& v = c.avsc();
-  set_positive(v.has_c1(), v.c1(), s.avsc.c1, "controller.avsc.c1");
-  set_positive(v.has_c2(), v.c2(), s.avsc.c2, "controller.avsc.c2");
-  set_positive(v.has_mu(), v.mu(), s.avsc.mu, "controller.avsc.mu");
-  set_positive(v.has_gamma(), v.gamma(), s.avsc.parameter_adaptation, "controller.avsc.gamma");
-  set_positive(v.has_beta(), v.beta(), s.avsc.beta, "controller.avsc.beta");
-  const auto& i = c.ilccc();
-  if (i.has_kcp()) s.ilccc.kcp = i.kcp();
-  if (i.has_kcd()) s.ilccc.kcd = i.kcd();
-  if (i.has_forgetting()) s.ilccc.forgetting = i.forgetting();
-  if (i.has_q_cutoff_hz()) s.ilccc.q_cutoff_hz = i.q_cutoff_hz();
-  if (i.has_lead_samples()) s.ilccc.lead_samples = i.lead_samples();
-  if (!c.estimator().empty()) s.estimator = c.estimator();
-  const auto& t = c.task_space();
-  s.initialization_filter.enabled = t.initialization_filter();
-  if (t.has_filter_wc()) s.initialization_filter.contour_bandwidth = t.filter_wc();
-  if (t.has_filter_wm()) s.initialization_filter.tangential_bandwidth = t.filter_wm();
-  const auto positive = [](bool has, double value, const char* field) {
-    if (has && !(value > 0.0)) {
-      throw std::invalid_argument(std::string("controller.task_space.") + field +
-                                  ": expected a positive number");
-    }
-    return has;
-  };
-  // One Lambda and K for every task-space controller that has them (SARC, DARC, DIARC).
-  // Three-axis GTCF-SARC: both contour coordinates [rc1, rc2] take the contour gains.
-  if (positive(t.has_lambda_c(), t.lambda_c(), "lambda_c")) {
-    s.sarc.lambda[0] = s.darc.lambda[0] = s.diarc.lambda[0] = s.cogging_darc.lambda[0] = t.lambda_c();
-    s.spatial_sarc.lambda[0] = s.spatial_sarc.lambda[1] = t.lambda_c();
-  }
-  if (positive(t.has_lambda_m(), t.lambda_m(), "lambda_m")) {
-    s.sarc.lambda[1] = s.darc.lambda[1] = s.diarc.lambda[1] = s.cogging_darc.lambda[1] = s.spatial_sarc.lambda[2] =
-        t.lambda_m();
-  }
-  if (positive(t.has_k_c(), t.k_c(), "k_c")) {
-    s.sarc.feedback[0] = s.darc.feedback[0] = s.diarc.feedback[0] = s.cogging_darc.feedback[0] = t.k_c();
-    s.spatial_sarc.feedback[0] = s.spatial_sarc.feedback[1] = t.k_c();
-  }
-  if (positive(t.has_k_m(), t.k_m(), "k_m")) {
-    s.sarc.feedback[1] = s.darc.feedback[1] = s.diarc.feedback[1] = s.cogging_darc.feedback[1] =
-        s.spatial_sarc.feedback[2] = t.k_m();
-  }
-  if (t.ltcf_rotation()) s.local_frame_rate = control::LocalFrameRate::rotating;
-  if (t.has_cogging_adaptation()) {
-    if (!(t.cogging_adaptation() >= 0.0 && t.cogging_adaptation() <= 1e6)) {
-      throw std::invalid_argument("controller.task_space.cogging_adaptation: expected a number in [0, 1e6]");
-    }
-    for (int row = 6; row < 6 + 4 * control::kCoggingHarmonicsPerAxis; ++row) {
-      s.cogging_darc.adaptation[row] = t.cogging_adaptation();
-    }
-  }
-  return s;
 }
 
 // spec.plant_axes as the plant catalog's per-axis overrides, in the group's axis order.
@@ -627,6 +397,35 @@ std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec) {
   return names;
 }
 
+void rename_axes(netmc::v1::JobSpec& spec, const std::vector<std::string>& names) {
+  const auto old_names = axis_names(spec);
+  netmc::v1::JobSpec renamed = spec;
+  renamed.clear_axes();
+  for (const auto& name : names) renamed.add_axes(name);
+  axis_names(renamed);  // checks count, form and uniqueness
+  // What names an axis keeps naming the same axis, by its place in the group.
+  const auto rename = [&](std::string& axis) {
+    for (std::size_t i = 0; i < old_names.size(); ++i) {
+      if (axis == old_names[i]) {
+        axis = names[i];
+        return;
+      }
+    }
+  };
+  for (auto& settings : *renamed.mutable_plant_axes()) rename(*settings.mutable_axis());
+  for (auto& inverse : *renamed.mutable_controller()->mutable_dead_zone_inverse()) rename(*inverse.mutable_axis());
+  for (auto& [group, gains] : *renamed.mutable_controller()->mutable_gains()) {
+    google::protobuf::Map<std::string, netmc::v1::AxisGains> axes;
+    for (const auto& [axis, own] : gains.axes()) {
+      std::string name = axis;
+      rename(name);
+      axes[name] = own;
+    }
+    *gains.mutable_axes() = axes;
+  }
+  spec = std::move(renamed);
+}
+
 void apply_defaults(netmc::v1::JobSpec& spec) {
   if (spec.plant().empty()) spec.set_plant("seed001");
   if (spec.controller().name().empty()) spec.mutable_controller()->set_name("adrc+ilccc");
@@ -694,38 +493,46 @@ void inline_delay_traces(netmc::v1::JobSpec& spec) {
   }
 }
 
-sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
+sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec, const JobBuildOptions& options) {
   check_ranges(spec);
   sim::ContourJob job;
   if (is_spatial_job(spec)) {
-    job.spatial_circle = in_field("trajectory", [&] { return build_spatial_circle(spec); });
+    job.reference = in_field("trajectory", [&] { return build_spatial_circle(spec); });
     const auto& c = spec.trajectory().spatial_circle();
     job.duration_s = spec.duration_s() > 0.0 ? spec.duration_s() : (c.revolutions() > 0.0 ? c.revolutions() : 4.0) * c.period_s();
   } else if (is_single_axis_job(spec)) {
-    job.axis_reference = in_field("trajectory", [&] { return build_axis_reference(spec); });
+    job.reference = in_field("trajectory", [&] { return build_axis_reference(spec); });
     job.duration_s = spec.duration_s();
   } else {
-    job.trajectory = in_field("trajectory", [&] { return build_trajectory(spec.trajectory()); });
+    job.reference = in_field("trajectory", [&] { return build_trajectory(spec.trajectory()); });
     job.duration_s = spec.duration_s();
   }
+  job.axis_names = in_field("axes", [&] { return axis_names(spec); });
+  const bool single_axis = job.axis_count() == 1;
   job.plant_name = spec.plant();
   const auto overrides = build_plant_overrides(spec, job.axis_count());
-  if (job.axis_reference) {
+  if (!options.load_plant_files && is_file_plant(spec.plant())) {
+    auto plants = remote_plant_set(spec.plant(), job.axis_count());
+    for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
+  } else if (single_axis) {
     // One axis of a stage: named y (or z), it is the stage's Y (Z) axis with that axis's
     // parameters (thesis 5.5 identifies each contouring axis's dead zone on its own).
-    const auto name = axis_names(spec).front();
+    const auto& name = job.axis_names.front();
     const std::size_t index = name == "y" ? 1 : name == "z" ? 2 : 0;
     std::vector<plant::AxisOverrides> placed(index + 1);
     if (!overrides.empty()) placed[index] = overrides.front();
-    auto plants = in_field("plant", [&] { return plant::make_plant_set(spec.plant(), index + 1, placed); });
+    auto plants = in_field("plant", [&] { return make_job_plant_set(spec.plant(), index + 1, placed); });
     job.axes.emplace_back(std::move(plants.axes[index]));
   } else {
-    auto plants = in_field("plant", [&] { return plant::make_plant_set(spec.plant(), job.axis_count(), overrides); });
+    auto plants = in_field("plant", [&] { return make_job_plant_set(spec.plant(), job.axis_count(), overrides); });
     for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
   }
   job.controller_name = spec.controller().name();
-  job.controller = in_field("controller", [&] { return build_settings(spec.controller()); });
-  job.controller.dead_zone_inverse = build_dead_zone_inverse(spec);
+  job.dead_zone_inverse = build_dead_zone_inverse(spec);
+  // The controller is resolved and built once here, so that a bad name or gain is reported
+  // before anything runs.
+  job.controller_factory = ControllerRegistry::global().resolve(spec.controller(), job.reference, job.axis_names,
+                                                                spec.sample_period_s(), options.controller_plugins);
   job.uplink = build_link(spec.uplink(), "uplink");
   job.downlink = build_link(spec.downlink(), "downlink");
   job.sensor.resolution_m = spec.sensor().resolution_m();
@@ -746,17 +553,15 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec) {
   if (spec.command_limit() != 0.0) job.command_limit = spec.command_limit();
   if (spec.divergence_limit_m() != 0.0) job.divergence_limit_m = spec.divergence_limit_m();
   if (spec.has_initial_position()) {
-    if (job.spatial_circle) {
+    if (job.axis_count() == 3) {
       throw std::invalid_argument("initial_position: a three-axis contour starts on the contour; expected none");
     }
-    if (job.axis_reference) {
+    if (single_axis) {
       throw std::invalid_argument("initial_position: a single-axis job starts at its reference's start; expected none");
     }
     job.initial_position = Eigen::Vector2d(spec.initial_position().x_m(), spec.initial_position().y_m());
   }
   job.validate();
-  // Construct the controller once here so a bad name or gain is reported before anything runs.
-  in_field("controller", [&] { return job.make_controller()->describe(); });
   return job;
 }
 
@@ -862,6 +667,7 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   out.set_stale_setpoints(static_cast<std::uint32_t>(m.stale_setpoints));
   out.set_diverged(m.diverged);
   out.set_diverged_at_s(m.diverged_at_s);
+  if (m.did_not_follow) out.set_did_not_follow(true);
   out.set_clock_uncertainty_s(m.clock_uncertainty_s);
   return out;
 }
@@ -902,7 +708,7 @@ netmc::v1::JobSpec parse_job_spec_json(const std::string& json, const std::strin
   netmc::v1::JobSpec spec;
   google::protobuf::util::JsonParseOptions options;
   options.ignore_unknown_fields = false;
-  const auto status = google::protobuf::util::JsonStringToMessage(json, &spec, options);
+  const auto status = google::protobuf::util::JsonStringToMessage(upgrade_legacy_spec_json(json), &spec, options);
   if (!status.ok()) {
     throw std::invalid_argument(origin + ": not a valid job spec: " +
                                 std::string(status.message()));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "idl/job.pb.h"
+#include "server/job/controller_registry.hpp"
 #include "server/sim/contour_job.hpp"
 #include "server/sim/iteration_metrics.hpp"
 
@@ -16,6 +17,9 @@ namespace netmc::job {
 // The names of the axes a job drives, in the group's order (spec.axes; default x for one axis,
 // x, y for two, x, y, z for three), checked.
 std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec);
+// Gives the job's axes new names, in group order, and moves what named the old ones (plant_axes,
+// the dead-zone inverse, per-axis gains) with them. Throws std::invalid_argument ("axes: ...").
+void rename_axes(netmc::v1::JobSpec& spec, const std::vector<std::string>& names);
 // An axis or node name: 1-64 characters of A-Z a-z 0-9 _ . - (std::invalid_argument naming `field`).
 void check_name(const std::string& name, const std::string& field);
 // Fills the defaults of paper 001 where the spec leaves a field unset.
@@ -24,9 +28,28 @@ void apply_defaults(netmc::v1::JobSpec& spec);
 inline constexpr std::size_t kMaxJobNameBytes = 256;
 inline constexpr std::uint32_t kMaxIterations = 10000;
 
+// What a process builds of a job it does not run whole. A plant or controller read from a file
+// (FMU, plugin) is only opened where it runs: on the axis node for the plant, on the server for
+// the controller, and there only if the operator allowed it.
+struct JobBuildOptions {
+  // false: a plant read from a file gets stand-ins that refuse to be simulated (a server, a
+  // client checking the job it sends); netmc's own plants are built as always.
+  bool load_plant_files = true;
+  ControllerPluginPolicy controller_plugins;
+};
+
+// A check of a job that runs elsewhere (a client before it sends it): every field, but no file
+// of a plant or controller opened.
+inline JobBuildOptions check_without_files() {
+  JobBuildOptions options;
+  options.load_plant_files = false;
+  options.controller_plugins.load = false;
+  return options;
+}
+
 // Builds the runnable job, one, two or three axes (loads delay trace files a local spec names,
 // checks every field against its documented range).
-sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec);
+sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec, const JobBuildOptions& options = {});
 // A spec from the network names no file: throws std::invalid_argument naming the field of a
 // delay trace given by path. Servers and axis nodes call it before anything else.
 void reject_file_references(const netmc::v1::JobSpec& spec);
@@ -48,7 +71,8 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& metrics);
 netmc::v1::RunResult describe_run(const netmc::v1::JobSpec& spec,
                                   const std::string& controller_detail);
 
-// JSON through protobuf's JSON mapping, field names as in job.proto.
+// JSON through protobuf's JSON mapping, field names as in job.proto (a 0.1 spec's typed gains
+// upgraded first, legacy_spec.hpp).
 netmc::v1::JobSpec parse_job_spec_json(const std::string& json, const std::string& origin);
 std::string to_json(const google::protobuf::Message& message);
 

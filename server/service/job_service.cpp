@@ -244,7 +244,7 @@ void JobService::admit(const Submission& submission) {
   job::apply_defaults(spec);
   try {
     job::reject_file_references(spec);  // the server opens no path a client names
-    job::build_contour_job(spec);       // every field checked before the job is queued
+    job::build_contour_job(spec, options_.build_options());  // every field checked before the job is queued
   } catch (const std::exception& error) {
     session->send(error_response(request.request_id(), error.what()));
     return;
@@ -600,11 +600,11 @@ void JobService::run(Job& job) {
         return *estimate;
       };
       RealtimeDdsRunner runner(channels, job.spec, job.id, {options_.axis_timeout, options_.silence_limit, options_.positioning_timeout},
-                               clocks_.time_base(), offsets);
+                               clocks_.time_base(), offsets, options_.build_options());
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
       runner.run(on_iteration, job.cancel);
     } else {
-      LockstepDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout);
+      LockstepDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout, options_.build_options());
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
       runner.run(on_iteration, job.cancel);
     }

@@ -18,6 +18,7 @@
 
 #include "idl/management.pb.h"
 #include "server/dds/dds_context.hpp"
+#include "server/job/job_builder.hpp"
 #include "server/management/management_server.hpp"
 #include "server/service/clock_tracker.hpp"
 #include "server/service/dds_job_messages.hpp"
@@ -38,6 +39,17 @@ struct JobServiceOptions {
   std::chrono::milliseconds positioning_timeout{60000};
   // The server has an admin token: resetting an axis's fault needs it.
   bool admin_token_configured = false;
+  // Controller plugins a job may name (netmc-server --allow-plugin), exact paths; none: no plugin.
+  std::vector<std::string> allowed_plugins;
+
+  // How the server builds a job: the controller here (a plugin only if allowed), plants read
+  // from files only on their axis nodes.
+  job::JobBuildOptions build_options() const {
+    job::JobBuildOptions build;
+    build.load_plant_files = false;
+    build.controller_plugins.allowed = allowed_plugins;
+    return build;
+  }
 };
 
 class JobService {

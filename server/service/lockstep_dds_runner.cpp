@@ -5,9 +5,10 @@
 namespace netmc::service {
 
 LockstepDdsRunner::LockstepDdsRunner(const JobChannels& channels, const netmc::v1::JobSpec& spec,
-                                     std::uint64_t job_id, std::chrono::milliseconds axis_timeout)
+                                     std::uint64_t job_id, std::chrono::milliseconds axis_timeout,
+                                     const job::JobBuildOptions& build)
     : channels_(channels),
-      job_(job::build_contour_job(spec)),
+      job_(job::build_contour_job(spec, build)),
       server_(job_),
       publisher_(channels, spec, job_id),
       axis_timeout_(axis_timeout) {}

@@ -12,6 +12,7 @@
 
 #include "dds_types.h"
 #include "idl/job.pb.h"
+#include "server/job/job_builder.hpp"
 #include "server/service/dds_job_messages.hpp"
 #include "server/sim/contour_server.hpp"
 
@@ -20,7 +21,8 @@ namespace netmc::service {
 class LockstepDdsRunner {
  public:
   LockstepDdsRunner(const JobChannels& channels, const netmc::v1::JobSpec& spec,
-                    std::uint64_t job_id, std::chrono::milliseconds axis_timeout);
+                    std::uint64_t job_id, std::chrono::milliseconds axis_timeout,
+                    const job::JobBuildOptions& build);
 
   // Runs every iteration (stopping after an unstable one or when `cancel` is set).
   void run(const std::function<void(const sim::IterationRecord&)>& on_iteration,

@@ -10,6 +10,8 @@
 
 #include <iostream>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "server/dds/dds_options_cli.hpp"
 #include "server/log/process_log.hpp"
@@ -17,6 +19,7 @@
 #include "server/management/host_port.hpp"
 #include "server/management/management_server.hpp"
 #include "server/management/tls_settings.hpp"
+#include "server/plugins/loaded_component_plugin.hpp"
 #include "server/realtime/realtime_options_cli.hpp"
 #include "server/service/job_service.hpp"
 #include "server/service/node_directory.hpp"
@@ -86,6 +89,11 @@ int main(int argc, char** argv) {
   app.add_option("--admin-token-file", admin_token_file,
                  "A client showing the token in this file may also cancel jobs of other connections "
                  "(netmc cancel); it is accepted wherever --token-file's is");
+  std::vector<std::string> allowed_plugins;
+  app.add_option("--allow-plugin", allowed_plugins,
+                 "A controller plugin (shared object) jobs may name as --controller plugin:PATH[:...], by this "
+                 "exact path; loaded and checked at start. Repeatable; default: none (a job naming a plugin is "
+                 "refused: a client cannot make the server load code)");
   netmc::dds::add_time_base_option(app, time_base);
   netmc::dds::add_dds_options(app, dds);
   netmc::realtime::RealtimeScheduling scheduling;
@@ -146,6 +154,16 @@ int main(int argc, char** argv) {
     options.max_queued_jobs = static_cast<std::size_t>(max_queued_jobs);
     options.positioning_timeout = std::chrono::milliseconds(positioning_timeout_ms);
     options.admin_token_configured = !admin_token_file.empty();
+    for (const auto& path : allowed_plugins) {
+      try {
+        const auto plugin = netmc::plugins::LoadedComponentPlugin::load(path);
+        if (!plugin->provides_axis_controller()) throw std::invalid_argument("it provides no axis controller");
+        spdlog::info("controller plugin {}: {}", path, plugin->description());
+      } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument("--allow-plugin " + path.substr(0, 200) + ": " + error.what());
+      }
+    }
+    options.allowed_plugins = allowed_plugins;
     netmc::service::JobService jobs(context, nodes, clocks, options);
     limits.max_connections = static_cast<std::size_t>(max_connections);
     limits.session.idle_timeout = std::chrono::seconds(idle_timeout_s);

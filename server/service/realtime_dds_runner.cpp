@@ -23,9 +23,9 @@ constexpr std::chrono::microseconds kGatherSpinMax{50};
 
 RealtimeDdsRunner::RealtimeDdsRunner(const JobChannels& channels, const netmc::v1::JobSpec& spec,
                                      std::uint64_t job_id, RealtimeLimits limits, dds::TimeBase time_base,
-                                     ClockOffsets offsets)
+                                     ClockOffsets offsets, const job::JobBuildOptions& build)
     : channels_(channels),
-      job_(job::build_contour_job(spec)),
+      job_(job::build_contour_job(spec, build)),
       server_(job_),
       publisher_(channels, spec, job_id),
       limits_(limits),

@@ -13,6 +13,7 @@
 
 #include "netsim/clock_offset_estimator.hpp"
 #include "server/dds/time_base.hpp"
+#include "server/job/job_builder.hpp"
 #include "server/service/dds_job_messages.hpp"
 #include "server/sim/contour_server.hpp"
 
@@ -31,7 +32,8 @@ using ClockOffsets = std::function<netsim::ClockOffsetEstimate(std::size_t axis)
 class RealtimeDdsRunner {
  public:
   RealtimeDdsRunner(const JobChannels& channels, const netmc::v1::JobSpec& spec, std::uint64_t job_id,
-                    RealtimeLimits limits, dds::TimeBase time_base, ClockOffsets offsets);
+                    RealtimeLimits limits, dds::TimeBase time_base, ClockOffsets offsets,
+                    const job::JobBuildOptions& build);
 
   void run(const std::function<void(const sim::IterationRecord&)>& on_iteration,
            const std::atomic<bool>& cancel);

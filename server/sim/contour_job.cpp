@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "control/dead_zone_compensated_group.hpp"
+#include "control/trajectory/multi_sine_reference.hpp"
 #include "control/planar_contour_group.hpp"
 #include "control/single_axis_group.hpp"
 #include "control/spatial_contour_group.hpp"
@@ -23,14 +24,41 @@ std::string LinkProfile::describe() const {
   return text;
 }
 
+std::size_t reference_dimension(const JobReference& reference) {
+  return std::visit(
+      [](const auto& kind) -> std::size_t {
+        using Kind = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<Kind, std::shared_ptr<const control::SpatialCircle>>) return 3;
+        if constexpr (std::is_same_v<Kind, std::shared_ptr<const control::MultiSineReference>>) return 1;
+        return 2;
+      },
+      reference);
+}
+
+namespace {
+
+template <class T>
+std::shared_ptr<const T> reference_of(const JobReference& reference) {
+  const auto* kind = std::get_if<std::shared_ptr<const T>>(&reference);
+  return kind ? *kind : nullptr;
+}
+
+}  // namespace
+
 void ContourJob::validate() const {
-  const int references = (trajectory != nullptr) + (spatial_circle != nullptr) + (axis_reference != nullptr);
-  require(references == 1, references == 0 ? "trajectory: missing" : "trajectory: expected one reference, got several");
-  require(!spatial_circle || (std::isfinite(duration_s) && duration_s > 0.0),
+  require(std::visit([](const auto& kind) { return kind != nullptr; }, reference), "trajectory: missing");
+  const auto circle = reference_of<control::SpatialCircle>(reference);
+  require(!circle || (std::isfinite(duration_s) && duration_s > 0.0),
           "duration: a circle in space needs a positive run length");
+  require(axis_names.size() == reference_dimension(reference),
+          "axes: the trajectory has " + std::to_string(reference_dimension(reference)) + " coordinates, the job " +
+              std::to_string(axis_names.size()) + " axes");
   require(axes.size() == axis_count(), "plant: expected " + std::to_string(axis_count()) + " axes, got " +
                                            std::to_string(axes.size()));
   for (const auto& axis : axes) require(axis != nullptr, "plant: missing axis model");
+  require(static_cast<bool>(controller_factory), "controller: missing");
+  require(dead_zone_inverse.empty() || dead_zone_inverse.size() == axis_count(),
+          "controller.dead_zone_inverse: expected one dead zone per axis of the group");
   require(std::isfinite(sample_period_s) && sample_period_s > 0.0,
           "sample_period: expected a positive duration, got " + std::to_string(sample_period_s));
   require(std::isfinite(duration_s) && duration_s >= 0.0,
@@ -58,41 +86,51 @@ void ContourJob::validate() const {
 
 control::AxisVector ContourJob::start_position() const {
   if (initial_position) return *initial_position;
-  if (spatial_circle) return spatial_circle->sample(0.0).position;
-  if (axis_reference) return control::AxisVector::Constant(1, axis_reference->sample(0.0).position);
-  return trajectory->sample(0.0).position;
+  return std::visit(
+      [](const auto& kind) -> control::AxisVector {
+        using Kind = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<Kind, std::shared_ptr<const control::MultiSineReference>>) {
+          return control::AxisVector::Constant(1, kind->sample(0.0).position);
+        } else {
+          return kind->sample(0.0).position;
+        }
+      },
+      reference);
 }
 
 double ContourJob::evaluation_start() const {
-  return resolve_evaluation_start(evaluation_start_s, spatial_circle   ? spatial_circle->period_s()
-                                                     : axis_reference ? axis_reference->period_s()
-                                                                      : trajectory->period_s());
+  return resolve_evaluation_start(evaluation_start_s,
+                                  std::visit([](const auto& kind) { return kind->period_s(); }, reference));
 }
 
 std::shared_ptr<const control::GroupContour> ContourJob::contour() const {
-  if (spatial_circle) return std::make_shared<control::SpatialContour>(spatial_circle, duration_s);
-  if (axis_reference) return std::make_shared<control::SingleAxisTrack>(axis_reference);
-  return std::make_shared<control::PlanarContour>(trajectory);
+  if (const auto circle = reference_of<control::SpatialCircle>(reference)) {
+    return std::make_shared<control::SpatialContour>(circle, duration_s);
+  }
+  if (const auto track = reference_of<control::MultiSineReference>(reference)) {
+    return std::make_shared<control::SingleAxisTrack>(track);
+  }
+  return std::make_shared<control::PlanarContour>(reference_of<control::ReferenceTrajectory>(reference));
 }
 
 std::unique_ptr<control::GroupController> ContourJob::make_controller() const {
-  std::unique_ptr<control::GroupController> out;
-  if (spatial_circle) {
-    out = control::make_spatial_group_controller(controller_name, controller, sample_period_s, spatial_circle);
-  } else if (axis_reference) {
-    out = control::make_tracking_group_controller(controller_name, controller, sample_period_s);
-  } else {
-    out = control::make_planar_group_controller(controller_name, controller, sample_period_s, *trajectory);
-  }
-  if (controller.dead_zone_inverse.empty()) return out;
-  require(controller.dead_zone_inverse.size() == axis_count(),
-          "controller.dead_zone_inverse: expected one dead zone per axis of the group");
-  return std::make_unique<control::DeadZoneCompensatedGroup>(std::move(out), controller.dead_zone_inverse);
+  auto out = controller_factory();
+  if (dead_zone_inverse.empty()) return out;
+  return std::make_unique<control::DeadZoneCompensatedGroup>(std::move(out), dead_zone_inverse);
 }
 
 double ContourJob::run_length_s() const {
   if (duration_s > 0.0) return duration_s;
-  return axis_reference ? axis_reference->duration_s() : trajectory->duration_s();
+  return std::visit(
+      [](const auto& kind) -> double {
+        using Kind = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<Kind, std::shared_ptr<const control::SpatialCircle>>) {
+          return 0.0;
+        } else {
+          return kind->duration_s();
+        }
+      },
+      reference);
 }
 
 std::size_t ContourJob::cycles() const {

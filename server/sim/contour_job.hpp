@@ -6,14 +6,16 @@
 #include <Eigen/Dense>
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "control/contour_group.hpp"
-#include "control/controller_catalog.hpp"
+#include "control/dead_zone/dead_zone_inverse.hpp"
 #include "control/trajectory/multi_sine_reference.hpp"
 #include "control/trajectory/reference_trajectory.hpp"
 #include "control/trajectory/spatial_circle.hpp"
@@ -38,17 +40,27 @@ inline double resolve_evaluation_start(double requested_s, double reference_peri
   return requested_s > 0.0 ? requested_s : 2.0 * reference_period_s;
 }
 
-// A contour group of two axes (a planar trajectory), three (a circle in space, thesis ch. 6) or
-// one (a tracking reference, thesis ch. 5): one runner, one server loop and one data plane for
-// all. Exactly one of the three references is set.
+// The reference a job's group follows: a planar trajectory (two axes), a circle in space (three
+// axes, thesis ch. 6) or a single axis's tracking reference (one axis, thesis ch. 5).
+using JobReference = std::variant<std::shared_ptr<const control::ReferenceTrajectory>,
+                                  std::shared_ptr<const control::SpatialCircle>,
+                                  std::shared_ptr<const control::MultiSineReference>>;
+// How many coordinates the reference has: 2, 3 or 1.
+std::size_t reference_dimension(const JobReference& reference);
+
+// A contour group of one, two or three axes: one runner, one server loop and one data plane for
+// all. Its axes are the job's (axis_names); the reference must have as many coordinates.
 struct ContourJob {
-  std::shared_ptr<const control::ReferenceTrajectory> trajectory;  // two axes
-  std::shared_ptr<const control::SpatialCircle> spatial_circle;    // three axes (then duration_s > 0)
-  std::shared_ptr<const control::MultiSineReference> axis_reference;  // one axis
+  JobReference reference;
+  std::vector<std::string> axis_names;  // in group order: the reference's x, y (, z)
   std::string plant_name;
   std::vector<std::shared_ptr<const plant::AxisPlant>> axes;  // prototypes, in group order
   std::string controller_name;
-  control::ControllerSettings controller;
+  // A fresh controller for the group (resolved and checked when the job was built).
+  std::function<std::unique_ptr<control::GroupController>()> controller_factory;
+  // Thesis section 5.5: a fixed dead-zone inverse per axis between the controller and the axes
+  // (volts), in group order; empty: none.
+  std::vector<control::DeadZoneEstimate> dead_zone_inverse;
   LinkProfile uplink;     // sensor -> controller (tau_sc)
   LinkProfile downlink;   // controller -> actuator (tau_ca)
   plant::PositionSensorParameters sensor;
@@ -72,9 +84,8 @@ struct ContourJob {
 
   // Throws std::invalid_argument naming the field when the job cannot run.
   void validate() const;
-  std::size_t axis_count() const { return spatial_circle ? 3 : axis_reference ? 1 : 2; }
-  // The group's contour and a fresh controller for it (throws std::invalid_argument
-  // "controller: ..." for a name or gain the group cannot run).
+  std::size_t axis_count() const { return axis_names.size(); }
+  // The group's contour and a fresh controller for it (with the dead-zone inverse, if any).
   std::shared_ptr<const control::GroupContour> contour() const;
   std::unique_ptr<control::GroupController> make_controller() const;
   double run_length_s() const;         // duration_s, or the reference's when 0

@@ -67,6 +67,7 @@ control::AxisVector ContourServer::begin_iteration(std::size_t iteration) {
   tau_sc_.clear();
   tau_cc_.clear();
   tau_ca_.clear();
+  reference_min_ = reference_max_ = position_min_ = position_max_ = start;
   squared_error_sum_ = 0.0;
   steady_squared_sum_ = 0.0;
   steady_samples_ = 0;
@@ -153,6 +154,10 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
     ++steady_samples_;
     m.e_max_steady_m = std::max(m.e_max_steady_m, std::abs(contour_error));
   }
+  reference_min_ = reference_min_.cwiseMin(reference.position);
+  reference_max_ = reference_max_.cwiseMax(reference.position);
+  position_min_ = position_min_.cwiseMin(true_position_);
+  position_max_ = position_max_.cwiseMax(true_position_);
   for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
     const auto i = static_cast<Eigen::Index>(axis);
     const double tracking = reference.position[i] - true_position_[i];
@@ -196,6 +201,22 @@ void ContourServer::record_applied(std::size_t axis, const std::vector<AppliedSe
   }
 }
 
+bool ContourServer::did_not_follow() const {
+  // The reference's extent: its largest range on any axis over the iteration.
+  const control::AxisVector reference_range = reference_max_ - reference_min_;
+  const double extent = reference_range.maxCoeff();
+  if (!(extent > 0.0)) return false;  // a reference that stands still: nothing to follow
+  const control::AxisVector position_range = position_max_ - position_min_;
+  for (Eigen::Index i = 0; i < reference_range.size(); ++i) {
+    // An axis that was to move (by more than 1 % of the extent) and covered less than half of
+    // its reference's range. A tracking error alone would not do: a contouring controller may
+    // trail the reference's time on purpose (the thesis's case B starts away from the path and
+    // reaches it through its initialization filter, tracking errors of 80 mm on a 40 mm circle).
+    if (reference_range[i] > 0.01 * extent && position_range[i] < kCoverageFraction * reference_range[i]) return true;
+  }
+  return false;
+}
+
 IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
                                              std::uint64_t stale_setpoints) {
   IterationMetrics& m = record_.metrics;
@@ -212,6 +233,7 @@ IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
           std::sqrt(steady_command_squares_[axis] / static_cast<double>(steady_samples_));
     }
   }
+  m.did_not_follow = !m.diverged && samples_ > 0 && did_not_follow();
   m.final_estimates.assign(last_estimates_.begin(),
                            last_estimates_.begin() + static_cast<std::ptrdiff_t>(m.estimate_names.size()));
   m.lost_setpoints = lost_setpoints;

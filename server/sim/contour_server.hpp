@@ -48,6 +48,11 @@ class ContourServer {
   std::size_t cycles() const { return cycles_; }
 
  private:
+  // An axis that covers less than this fraction of its reference's range marks a run that did
+  // not follow (IterationMetrics::did_not_follow).
+  static constexpr double kCoverageFraction = 0.5;
+  bool did_not_follow() const;
+
   ContourJob job_;
   std::shared_ptr<const control::GroupContour> contour_;
   std::unique_ptr<control::GroupController> controller_;
@@ -68,6 +73,8 @@ class ContourServer {
   double steady_squared_sum_ = 0.0;
   std::size_t steady_samples_ = 0;
   std::vector<double> tracking_squares_, command_squares_, steady_command_squares_;
+  // Per axis, over the iteration: where the reference and the axis went (did it follow?).
+  control::AxisVector reference_min_, reference_max_, position_min_, position_max_;
   double compute_time_ = 0.0;
   std::size_t samples_ = 0;
   std::array<double, control::kMaxControllerEstimates> last_estimates_{};

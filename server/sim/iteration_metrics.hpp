@@ -39,6 +39,10 @@ struct IterationMetrics {
   std::uint64_t lost_setpoints = 0;
   std::uint64_t stale_setpoints = 0;     // arrived after a newer one, dropped
   bool diverged = false;                 // the loop went unstable; metrics cover samples before
+  // The axes did not follow the reference: an axis covered less than half of the range its
+  // reference spans (contour_server.cpp). The contour error of a closed curve is the distance to
+  // the whole curve, so axes standing on it show e_max 0: such a run is no result.
+  bool did_not_follow = false;
   double diverged_at_s = 0.0;
   double clock_uncertainty_s = 0.0;      // distributed realtime: +- on tau_sc / tau_ca
   // The controller's internal estimates (adaptive parameters, observer states) and their values

@@ -65,10 +65,10 @@ TEST(NetmcUsage, EveryBadValueOfANewFlagExitsWith2AndOneMessageNamingIt) {
 TEST(NetmcUsage, SpecFileErrorsNameTheFileAndTheField) {
   const auto spec = (std::filesystem::temp_directory_path() / "netmc_usage_spec.json").string();
   const std::vector<std::pair<std::string, std::string>> cases{
-      {R"({"controller": {"adrc": {"w0": -3}}})", spec + ": controller.adrc.w0: expected a positive number, got -3"},
+      {R"({"controller": {"adrc": {"w0": -3}}})", spec + ": controller.gains.adrc.w0: expected a positive finite number, got -3"},
       {R"({"controller": {"name": "adrc+fuzzy"}})", spec + ": controller: unknown name 'adrc+fuzzy'"},
       {R"({"plant": "steam"})", spec + ": plant: "},
-      {R"({"controller": {"adrc": {"observer": "rk4"}}})", spec + ": controller.adrc.observer: expected 'euler' or 'zoh'"},
+      {R"({"controller": {"adrc": {"observer": "rk4"}}})", spec + ": controller.gains.adrc.observer: expected euler or zoh, got 'rk4'"},
   };
   for (const auto& [json, expected] : cases) {
     {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "client/spec_syntax.hpp"
+#include "server/job/controller_registry.hpp"
 
 namespace netmc::cli {
 namespace {
@@ -147,50 +148,67 @@ TEST(SpecSyntax, DelaysAndLosses) {
             std::string::npos);
 }
 
+// The gains flags are the registry's groups' (server/job/controller_gains.hpp).
+const job::GainGroup& group(const std::string& name) { return *job::ControllerRegistry::global().gain_group(name); }
+
 TEST(SpecSyntax, Gains) {
-  netmc::v1::AdrcGains adrc;
-  parse_adrc_gains("r0=150,w0=120,observer=zoh", adrc);
-  EXPECT_EQ(adrc.r0(), 150.0);
-  EXPECT_EQ(adrc.observer(), "zoh");
-  EXPECT_FALSE(adrc.has_kp());
-  netmc::v1::IlcGains ilc;
-  parse_ilc_gains("kcp=30,q=20,lead=2", ilc);
-  EXPECT_EQ(ilc.q_cutoff_hz(), 20.0);
-  EXPECT_EQ(ilc.lead_samples(), 2u);
-  EXPECT_NE(error_of([&] { parse_ilc_gains("lead=1.5", ilc); }).find("whole number"),
-            std::string::npos);
-  EXPECT_NE(error_of([&] { parse_adrc_gains("observer=rk4", adrc); }).find("euler or zoh"),
-            std::string::npos);
-  EXPECT_NE(error_of([&] { parse_adrc_gains("b0=x", adrc, "--adrc-y"); }).find("--adrc-y"),
-            std::string::npos);
+  const std::vector<std::string> axes{"x", "y"};
+  netmc::v1::ControllerSpec spec;
+  job::parse_gain_flag("r0=150,w0=120,observer=zoh,y.b0=1.8", group("adrc"), axes, spec);
+  const auto& adrc = spec.gains().at("adrc");
+  EXPECT_EQ(adrc.values().at("r0"), 150.0);
+  EXPECT_EQ(adrc.choices().at("observer"), "zoh");
+  EXPECT_FALSE(adrc.values().contains("kp"));
+  EXPECT_EQ(adrc.axes().at("y").values().at("b0"), 1.8);
+  job::parse_gain_flag("kcp=30,q=20,lead=2", group("ilccc"), axes, spec);
+  EXPECT_EQ(spec.gains().at("ilccc").values().at("q_cutoff_hz"), 20.0);
+  EXPECT_EQ(spec.gains().at("ilccc").values().at("lead_samples"), 2.0);
+  const auto error = [&](const std::string& text, const std::string& name) {
+    return error_of([&] { job::parse_gain_flag(text, group(name), axes, spec); });
+  };
+  EXPECT_NE(error("lead=1.5", "ilccc").find("--ilc lead: expected a whole number"), std::string::npos)
+      << error("lead=1.5", "ilccc");
+  EXPECT_NE(error("observer=rk4", "adrc").find("euler or zoh"), std::string::npos);
+  EXPECT_NE(error("b0=x", "adrc").find("--adrc b0"), std::string::npos) << error("b0=x", "adrc");
+  EXPECT_NE(error("z.b0=1", "adrc").find("unknown key 'z.b0'"), std::string::npos) << error("z.b0=1", "adrc");
+  EXPECT_NE(error("y.kcp=1", "ilccc").find("--ilc: takes no per-axis values"), std::string::npos)
+      << error("y.kcp=1", "ilccc");
+  EXPECT_NE(error("w0", "adrc").find("expected KEY=VALUE"), std::string::npos);
+  EXPECT_NE(error("w0=1,w0=2", "adrc").find("w0 is given twice"), std::string::npos);
 }
 
 TEST(SpecSyntax, GtcfAdrcBandwidths) {
-  netmc::v1::GtcfAdrcGains gains;
-  parse_gtcf_adrc_gains("wc=250,wo=1200,observer=zoh", gains);
-  EXPECT_EQ(gains.wc(), 250.0);
-  EXPECT_FALSE(gains.has_wm());
-  EXPECT_EQ(gains.woc(), 1200.0);  // wo sets both observers
-  EXPECT_EQ(gains.wom(), 1200.0);
-  EXPECT_EQ(gains.observer(), "zoh");
-  EXPECT_EQ(gains.observer_input_delay(), 0u);
-  parse_gtcf_adrc_gains("delay=5", gains);
-  EXPECT_EQ(gains.observer_input_delay(), 5u);
+  const std::vector<std::string> axes{"x", "y"};
+  netmc::v1::ControllerSpec spec;
+  job::parse_gain_flag("wc=250,wo=1200,observer=zoh", group("gtcf_adrc"), axes, spec);
+  const auto& gains = spec.gains().at("gtcf_adrc");
+  EXPECT_EQ(gains.values().at("wc"), 250.0);
+  EXPECT_FALSE(gains.values().contains("wm"));
+  EXPECT_EQ(gains.values().at("woc"), 1200.0);  // wo sets both observers
+  EXPECT_EQ(gains.values().at("wom"), 1200.0);
+  EXPECT_EQ(gains.choices().at("observer"), "zoh");
+  job::parse_gain_flag("delay=5", group("gtcf_adrc"), axes, spec);
+  EXPECT_EQ(spec.gains().at("gtcf_adrc").values().at("observer_input_delay"), 5.0);
   for (const char* bad : {"wc=0", "wo=1000,wom=500", "kp=3", "observer=rk4", "delay=1.5", "delay=-1"}) {
-    EXPECT_NE(error_of([&] { parse_gtcf_adrc_gains(bad, gains); }).find("--gtcf-adrc"), std::string::npos)
+    EXPECT_NE(error_of([&] { job::parse_gain_flag(bad, group("gtcf_adrc"), axes, spec); }).find("--gtcf-adrc"),
+              std::string::npos)
         << bad;
   }
 }
 
 TEST(SpecSyntax, TaskSpaceAndInitialPosition) {
-  netmc::v1::TaskSpaceGains gains;
-  parse_task_space_gains("init_filter=on,wm=2", gains);
-  EXPECT_TRUE(gains.initialization_filter());
-  EXPECT_FALSE(gains.has_filter_wc());
-  EXPECT_EQ(gains.filter_wm(), 2.0);
-  EXPECT_NE(error_of([&] { parse_task_space_gains("init_filter=yes", gains); }).find("on or off"),
+  netmc::v1::ControllerSpec spec;
+  const std::vector<std::string> axes{"x", "y"};
+  job::parse_gain_flag("init_filter=on,wm=2", group("task_space"), axes, spec);
+  const auto& gains = spec.gains().at("task_space");
+  EXPECT_EQ(gains.choices().at("initialization_filter"), "on");
+  EXPECT_FALSE(gains.values().contains("filter_wc"));
+  EXPECT_EQ(gains.values().at("filter_wm"), 2.0);
+  EXPECT_NE(error_of([&] { job::parse_gain_flag("init_filter=yes", group("task_space"), axes, spec); })
+                .find("off or on"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { parse_task_space_gains("wc=-8", gains); }).find("--task-space"), std::string::npos);
+  EXPECT_NE(error_of([&] { job::parse_gain_flag("wc=-8", group("task_space"), axes, spec); }).find("--task-space"),
+            std::string::npos);
   const auto position = parse_position("x=10mm,y=-0.02", "--initial-position");
   EXPECT_DOUBLE_EQ(position.x_m(), 0.01);
   EXPECT_DOUBLE_EQ(position.y_m(), -0.02);

@@ -1,9 +1,11 @@
 // JSON spec files: every mistake is reported at its field path, with what was expected and
 // what was found; everything protobuf itself writes for a JobSpec is accepted.
+#include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>
 
 #include "client/presets.hpp"
 #include "client/spec_validation.hpp"
+#include "server/job/controller_gains.hpp"
 #include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
@@ -20,8 +22,10 @@ std::string error_of(const std::string& json) {
 
 TEST(SpecValidation, ErrorsPointAtTheField) {
   const std::vector<std::pair<std::string, std::string>> cases{
-      {R"({"controller": {"adrc": {"w0": -3}}})",
-       "spec.json: controller.adrc.w0: expected a positive number, got -3"},
+      {R"({"controller": {"gains": {"adrc": {"values": {"w0": "fast"}}}}})",
+       "spec.json: controller.gains.adrc.values.w0: expected a number, got the text \"fast\""},
+      {R"({"controller": {"gains": {"adrc": {"lists": {"lower": [1, 2]}}}}})",
+       "spec.json: controller.gains.adrc.lists.lower: expected an object {...}, got a list"},
       {R"({"iterations": "many"})",
        "spec.json: iterations: expected a non-negative whole number, got the text \"many\""},
       {R"({"iterations": 2.5})", "spec.json: iterations: expected a non-negative whole number, got 2.5"},
@@ -36,11 +40,12 @@ TEST(SpecValidation, ErrorsPointAtTheField) {
       {R"({"trajectory": {"line": {"duration_s": 0}}})",
        "spec.json: trajectory.line.duration_s: expected a positive number, got 0"},
       {R"({"controler": {"name": "adrc"}})", "spec.json: controler: unknown field (expected one of: name, "},
+      // netmc 0.1's typed gains are checked as the gains they stand for.
       {R"({"controller": {"ilccc": {"kcp": "40"}}})",
-       "spec.json: controller.ilccc.kcp: expected a number, got the text \"40\""},
+       "spec.json: controller.gains.ilccc.values.kcp: expected a number, got the text \"40\""},
       {R"({"controller": {"name": 7}})", "spec.json: controller.name: expected a text in quotes, got 7"},
       {R"({"controller": {"adrc": {"observer_sees_sent_command": "yes"}}})",
-       "spec.json: controller.adrc.observer_sees_sent_command: expected true or false"},
+       "spec.json: controller.gains.adrc.values.observer_sees_sent_command: expected a number"},
       {R"({"downlink": {"delay": {"trace": {"delays_s": [0.001, -2]}}}})",
        "spec.json: downlink.delay.trace.delays_s[1]: expected a non-negative number, got -2"},
       {R"({"downlink": {"delay": {"trace": {"delays_s": 0.001}}}})",
@@ -56,16 +61,27 @@ TEST(SpecValidation, ErrorsPointAtTheField) {
 
 TEST(SpecValidation, AcceptsWhatProtobufWritesAndItsCamelCaseNames) {
   auto job = seed001_job("adrc+ilccc");
-  job.mutable_controller()->mutable_adrc()->set_w0(120);
-  job.mutable_controller()->mutable_ilccc()->set_q_cutoff_hz(20);
+  job::set_gain(*job.mutable_controller(), "adrc", "w0", 120);
+  job::set_gain(*job.mutable_controller(), "ilccc", "q_cutoff_hz", 20);
   job.mutable_uplink()->mutable_loss()->mutable_gilbert_elliott()->set_p_good_to_bad(0.01);
   job::apply_defaults(job);
   const std::string json = job::to_json(job);  // every field, defaults included
   EXPECT_EQ(error_of(json), "") << json;
   const auto parsed = parse_job_spec_file_text(json, "spec.json");
-  EXPECT_EQ(parsed.SerializeAsString(), job.SerializeAsString());
+  EXPECT_TRUE(google::protobuf::util::MessageDifferencer::Equals(parsed, job)) << json;
 
+  EXPECT_EQ(error_of(R"({"samplePeriodS": 0.005, "controller": {"gains": {"ilccc": {"values": {"q_cutoff_hz": 20}}}}})"), "");
+  // netmc 0.1's typed gains, camelCase too, are read as the gains they stand for.
   EXPECT_EQ(error_of(R"({"samplePeriodS": 0.005, "controller": {"ilccc": {"qCutoffHz": 20}}})"), "");
+  EXPECT_EQ(parse_job_spec_file_text(R"({"controller": {"ilccc": {"qCutoffHz": 20}, "adrcY": {"w0": 90}}})", "spec.json")
+                .controller()
+                .gains()
+                .at("adrc")
+                .axes()
+                .at("y")
+                .values()
+                .at("w0"),
+            90.0);
   EXPECT_EQ(error_of(R"({"trajectory": null, "seed": "42", "iterations": 3.0})"), "");
 }
 

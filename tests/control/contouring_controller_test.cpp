@@ -1,17 +1,21 @@
-// Composition of per-axis control and contour compensation (paper 001, eq. 15) and the catalog.
+// Composition of per-axis control and contour compensation (paper 001, eq. 15). (Names and
+// gains of the compositions: tests/server/controller_registry_test.cpp.)
 #include <gtest/gtest.h>
 
+#include "control/axis/pid_axis_controller.hpp"
+#include "control/cross_coupling/contouring_controller.hpp"
+#include "control/cross_coupling/pid_cross_coupling.hpp"
 #include "control/trajectory/circle_trajectory.hpp"
-#include "control/controller_catalog.hpp"
 
 namespace netmc::control {
 namespace {
 
 TEST(ContouringController, DistributesTheCouplingCommandWithTheEstimatorGains) {
   // Per-axis PID with zero gains leaves only the coupling term: U = (-cx u_e, cy u_e).
-  ControllerSettings settings;
-  settings.pidccc = {2.0, 0.0, 0.0};
-  auto controller = make_contouring_controller("pid+pidccc", settings, 0.005);
+  ContouringController controller(std::make_unique<PidAxisController>(PidAxisGains{}, 0.005),
+                                  std::make_unique<PidAxisController>(PidAxisGains{}, 0.005),
+                                  make_contour_error_estimator("curvature"),
+                                  std::make_unique<PidCrossCoupling>(PidCrossCouplingGains{2.0, 0.0, 0.0}, 0.005));
   CircleTrajectory circle({{0.05, 0.05}, 0.01, 8.0});
   controller.begin_iteration(circle.sample(0).position, 10);
   const auto reference = circle.sample(0.5);
@@ -25,27 +29,6 @@ TEST(ContouringController, DistributesTheCouplingCommandWithTheEstimatorGains) {
   const Eigen::Vector2d outward = (reference.position - Eigen::Vector2d(0.05, 0.05)).normalized();
   EXPECT_GT(estimate.contour_error, 0.0);
   EXPECT_LT(cycle.command.dot(outward), 0.0);
-}
-
-TEST(ControllerCatalog, BuildsEveryCombinationAndRejectsUnknownNames) {
-  for (const auto& axis : axis_controller_names()) {
-    EXPECT_NO_THROW(make_contouring_controller(axis, {}, 0.005));
-    for (const auto& compensator : contour_compensator_names()) {
-      EXPECT_NO_THROW(make_contouring_controller(axis + "+" + compensator, {}, 0.005));
-    }
-  }
-  for (const char* bad : {"adrcx", "adrc+", "adrc+qft", "", "+ilccc"}) {
-    try {
-      make_contouring_controller(bad, {}, 0.005);
-      ADD_FAILURE() << bad;
-    } catch (const std::invalid_argument& error) {
-      EXPECT_NE(std::string(error.what()).find("controller: unknown name"), std::string::npos);
-    }
-  }
-  ControllerSettings nan_gain;
-  nan_gain.adrc.kp = std::nan("");
-  EXPECT_THROW(make_contouring_controller("adrc", nan_gain, 0.005), std::invalid_argument);
-  EXPECT_THROW(make_contouring_controller("adrc", {}, 0.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "control/axis/feedforward_pid_axis.hpp"
-#include "control/controller_catalog.hpp"
+#include "control/cross_coupling/tustin_cross_coupling.hpp"
 #include "control/cross_coupling/feedforward_pid_contouring.hpp"
 #include "control/cross_coupling/tustin_cross_coupling.hpp"
 #include "control/frequency/qft_bounds.hpp"
@@ -202,15 +202,21 @@ TEST(TustinCrossCoupling, QftLawOfEq20IsItsTustinDifferenceEquation) {
   EXPECT_LT(worst_difference_from(b, a, *copy), 1e-9);
 }
 
+// Paper 004's uncoupled loops (Tables 1 and 2) with `compensator` (none: uncoupled) and the
+// tangent estimator of its eq. 3.
+std::unique_ptr<FeedforwardPidContouring> paper004_controller(std::unique_ptr<ContourCompensator> compensator) {
+  if (!compensator) compensator = std::make_unique<NoContourCompensation>();
+  return std::make_unique<FeedforwardPidContouring>(paper004_x_axis_gains(), paper004_y_axis_gains(), kLoopPeriodS,
+                                                    make_contour_error_estimator("tangent"), std::move(compensator));
+}
+
 TEST(FeedforwardPidContouring, DistributesTheCouplingCommandAsEq6) {
   // At angle 0 of a counter-clockwise circle the tangent is +y: C_x = sin(phi) = 1, C_y = 0.
   CircleTrajectory circle({{0.0, 0.0}, 0.05, 2.0});
-  ControllerSettings settings;
-  settings.estimator = "tangent";
   const ReferencePoint reference = circle.sample(0.0);
   const Eigen::Vector2d measured = reference.position + Eigen::Vector2d(2e-6, 1e-6);  // outside
-  auto uncoupled = make_contour_controller("ffpid", settings, kLoopPeriodS, circle);
-  auto coupled = make_contour_controller("ffpid+qftccc", settings, kLoopPeriodS, circle);
+  auto uncoupled = paper004_controller(nullptr);
+  auto coupled = paper004_controller(std::make_unique<TustinCrossCoupling>(make_qft_cross_coupling(kLoopPeriodS)));
   uncoupled->begin_iteration(reference.position, 10);
   coupled->begin_iteration(reference.position, 10);
   const ContouringCycle u = uncoupled->step(0, reference, measured);
@@ -242,9 +248,7 @@ TEST(FeedforwardPidContouring, AtRestTheTangentIsTheLastDirectionOfTravel) {
   p.period_s = 2.0;
   p.ramp_s = 0.2;
   const CircleTrajectory circle(p);
-  ControllerSettings settings;
-  settings.estimator = "tangent";
-  auto controller = make_contour_controller("ffpid+qftccc", settings, kLoopPeriodS, circle);
+  auto controller = paper004_controller(std::make_unique<TustinCrossCoupling>(make_qft_cross_coupling(kLoopPeriodS)));
   controller->begin_iteration(circle.sample(0.0).position, 10);
   const Eigen::Vector2d offset(1e-6, 0.0);  // outside the circle at (R, 0)
   // Before any travel the estimator's own fallback applies (+x: C_x = 0).
@@ -259,21 +263,6 @@ TEST(FeedforwardPidContouring, AtRestTheTangentIsTheLastDirectionOfTravel) {
   // A new iteration forgets the direction.
   controller->begin_iteration(circle.sample(0.0).position, 10);
   EXPECT_NEAR(controller->step(0, stopped, stopped.position + offset).estimate.cx, 0.0, 1e-12);
-}
-
-TEST(FeedforwardPidContouring, CatalogNamesAndErrors) {
-  const CircleTrajectory circle({{0.0, 0.0}, 0.05, 2.0});
-  for (const char* name : {"ffpid", "ffpid+lpccc", "ffpid+qftccc", "ffpid+pidccc"}) {
-    EXPECT_NO_THROW(make_contour_controller(name, {}, kLoopPeriodS, circle)) << name;
-  }
-  for (const char* name : {"ffpid+", "ffpid+qft", "ffpidx"}) {
-    try {
-      make_contour_controller(name, {}, kLoopPeriodS, circle);
-      ADD_FAILURE() << name;
-    } catch (const std::invalid_argument& error) {
-      EXPECT_NE(std::string(error.what()).find("ffpid+qftccc"), std::string::npos) << error.what();
-    }
-  }
 }
 
 }  // namespace

@@ -5,7 +5,8 @@
 
 #include <cmath>
 
-#include "control/controller_catalog.hpp"
+#include "control/cross_coupling/feedforward_pid_contouring.hpp"
+#include "control/cross_coupling/tustin_cross_coupling.hpp"
 #include "control/trajectory/circle_trajectory.hpp"
 #include "tests/support/allocation_counter.hpp"
 
@@ -18,10 +19,15 @@ TEST(NoAllocation, FeedforwardPidControllersStepWithoutAllocating) {
   p.period_s = 0.2;
   p.ramp_s = 0.02;
   const CircleTrajectory circle(p);
-  ControllerSettings settings;
-  settings.estimator = "tangent";
   for (const char* name : {"ffpid", "ffpid+lpccc", "ffpid+qftccc"}) {
-    auto controller = make_contour_controller(name, settings, 5e-5, circle);
+    std::unique_ptr<ContourCompensator> compensator = std::make_unique<NoContourCompensation>();
+    if (std::string(name) == "ffpid+lpccc") {
+      compensator = std::make_unique<TustinCrossCoupling>(make_low_pass_pid_cross_coupling({}, 5e-5));
+    }
+    if (std::string(name) == "ffpid+qftccc") compensator = std::make_unique<TustinCrossCoupling>(make_qft_cross_coupling(5e-5));
+    auto controller = std::make_unique<FeedforwardPidContouring>(paper004_x_axis_gains(), paper004_y_axis_gains(), 5e-5,
+                                                                 make_contour_error_estimator("tangent"),
+                                                                 std::move(compensator));
     controller->begin_iteration(circle.sample(0.0).position, 6000);
     const long before = netmc::testing::heap_allocations();
     double sum = 0.0;

@@ -9,7 +9,8 @@
 #include <numbers>
 #include <vector>
 
-#include "control/controller_catalog.hpp"
+#include "control/axis/adrc_controller.hpp"
+#include "control/cross_coupling/contouring_controller.hpp"
 #include "control/cross_coupling/iterative_learning_cross_coupling.hpp"
 #include "control/trajectory/polyline_trajectory.hpp"
 
@@ -40,9 +41,10 @@ std::vector<double> corner_learning_curve(const IterativeLearningGains& gains, i
   path.max_acceleration_m_s2 = 0.1;
   const PolylineTrajectory polyline(path);
   const auto samples = static_cast<std::size_t>(std::lround(polyline.duration_s() / kPeriod)) + 1;
-  ControllerSettings settings;
-  settings.ilccc = gains;
-  auto controller = make_contouring_controller("adrc+ilccc", settings, kPeriod);
+  ContouringController controller(std::make_unique<AdrcController>(AdrcGains{}, kPeriod),
+                                  std::make_unique<AdrcController>(AdrcGains{}, kPeriod),
+                                  make_contour_error_estimator("curvature"),
+                                  std::make_unique<IterativeLearningCrossCoupling>(gains, kPeriod));
   std::vector<double> worst;
   for (int j = 0; j < iterations; ++j) {
     Axis x{-20.0, 20.0}, y{-10.0, 10.0};

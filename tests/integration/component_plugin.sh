@@ -67,8 +67,84 @@ print(f"its table: plugin ABI {abi}, netmc {version}, {compiler}")
 sys.exit(0 if abi == 1 and version == sys.argv[2] else 1)
 PY
 
-# --- netmc sim on the plugin ---------------------------------------------------------------
-# Added with --controller plugin: / --plant plugin: in the CLI: "$netmc" sim with
-#   --controller "plugin:$controller_plugin:kp=..,kd=.." --plant "plugin:$controller_plugin"
-# against --controller pid (ki = 0, same kp and kd) on --plant seed001:coulomb_m_s2=0, compared
-# with same_json (lib.sh): the example is that loop and that plant, so the JSON is identical.
+# --- netmc sim, netmc sweep and netmc-server on the plugin ------------------------------------
+# same_runs A B WHAT: the two results' iterations (every metric of every run) are identical; the
+# runs' names differ (plugin:... against pid), so the files are compared run by run.
+same_runs() {
+  python3 - "$1" "$2" "$3" <<'PY'
+import json, sys
+a, b = (json.load(open(path)) for path in sys.argv[1:3])
+runs_a, runs_b = a["runs"], b["runs"]
+assert len(runs_a) == len(runs_b) > 0, f"{sys.argv[3]}: {len(runs_a)} runs against {len(runs_b)}"
+for run_a, run_b in zip(runs_a, runs_b):
+    if run_a["iterations"] != run_b["iterations"]:
+        for it_a, it_b in zip(run_a["iterations"], run_b["iterations"]):
+            for key in it_a:
+                if it_a[key] != it_b.get(key):
+                    sys.exit(f"FAIL {sys.argv[3]}: iteration {it_a['iteration']} {key}: {it_a[key]} against {it_b.get(key)}")
+        sys.exit(f"FAIL {sys.argv[3]}: the iterations differ")
+m = runs_a[-1]["iterations"][-1]
+print(f"{sys.argv[3]}: identical metrics in {len(runs_a)} run(s) (last e_max {m['e_max_m'] * 1e3:.6f} mm)")
+PY
+}
+sim() { "$netmc" sim -q --iterations 3 "$@"; }
+pd="plugin:$controller_plugin:kp=540,kd=8"
+
+# The example's PD loop is the built-in pid with ki = 0: alone, with a compensator, and with an
+# axis's own gain.
+sim --controller "$pd" --json "$tmp/plugin.json" >/dev/null
+sim --controller pid --pid kp=540,ki=0,kd=8 --json "$tmp/pid.json" >/dev/null
+same_runs "$tmp/plugin.json" "$tmp/pid.json" "--controller plugin: (PD) against pid, ki = 0"
+sim --controller "$pd,y.kd=4+ilccc" --json "$tmp/plugin-ilc.json" >/dev/null
+sim --controller pid+ilccc --pid kp=540,ki=0,kd=8,y.kd=4 --json "$tmp/pid-ilc.json" >/dev/null
+same_runs "$tmp/plugin-ilc.json" "$tmp/pid-ilc.json" "plugin:...,y.kd=4+ilccc against pid+ilccc with y.kd=4"
+# Its plant is paper 001's axis without friction.
+sim --plant "plugin:$controller_plugin" --json "$tmp/plugin-plant.json" >/dev/null
+sim --plant seed001:coulomb_m_s2=0 --json "$tmp/seed001.json" >/dev/null
+same_runs "$tmp/plugin-plant.json" "$tmp/seed001.json" "--plant plugin: against seed001 without friction"
+# netmc sweep takes it as netmc sim does.
+"$netmc" sweep --controller "$pd" --delay-max 1ms,4ms --duration 2s --iterations 1 --csv "$tmp/sweep.csv" \
+  >"$tmp/sweep.txt"
+[ "$(grep -c "plugin:" "$tmp/sweep.csv")" -eq 2 ] || { echo "FAIL: the sweep did not run the plugin twice"; cat "$tmp/sweep.txt"; exit 1; }
+echo "netmc sweep ran the plugin at 2 delays"
+
+# Refused, one message each: a build against another netmc version, another plugin ABI, a key the
+# plugin does not take, a file that is not there.
+refused() {  # refused WHAT EXPECTED COMMAND...
+  local what=$1 expected=$2
+  shift 2
+  if "$@" >"$tmp/refused.out" 2>&1; then echo "FAIL: $what was accepted"; exit 1; fi
+  grep -q -- "$expected" "$tmp/refused.out" || { echo "FAIL: $what: expected '$expected' in:"; cat "$tmp/refused.out"; exit 1; }
+  echo "refused, $what: $(grep -m1 "error" "$tmp/refused.out" | cut -c1-200)"
+}
+mkdir "$tmp/old-version"
+cp -r "$prefix/share/netmc/examples/controller_plugin" "$tmp/old-version/src"
+sed -i '1i #include <string>\n#undef NETMC_VERSION\n#define NETMC_VERSION "0.0.9"' "$tmp/old-version/src/example_controller.cpp"
+cmake -S "$tmp/old-version/src" -B "$tmp/old-version/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_FLAGS=-Wno-builtin-macro-redefined >/dev/null
+cmake --build "$tmp/old-version/build" >"$tmp/old-version/build.log" 2>&1 ||
+  { echo "FAIL: the version-0.0.9 build failed"; cat "$tmp/old-version/build.log"; exit 1; }
+refused "a plugin built against netmc 0.0.9" "built against netmc 0.0.9" \
+  "$netmc" sim -q --controller "plugin:$tmp/old-version/build/libexample_controller.so:kp=1,kd=1"
+cp -r "$prefix" "$tmp/abi2"
+sed -i 's/^#define NETMC_COMPONENT_PLUGIN_ABI 1$/#define NETMC_COMPONENT_PLUGIN_ABI 2/' \
+  "$tmp/abi2/include/netmc/control/plugin/component_plugin.hpp"
+sed -i "s#$prefix#$tmp/abi2#g" "$tmp"/abi2/lib*/cmake/netmc/*.cmake
+mkdir "$tmp/abi2-example"
+abi2_plugin=$(build_example_component_plugin "$tmp/abi2" "$tmp/abi2-example")
+refused "a plugin of ABI 2" "plugin ABI 2" "$netmc" sim -q --controller "plugin:$abi2_plugin:kp=1,kd=1"
+refused "an unknown key" "unknown key 'ki'" "$netmc" sim -q --controller "plugin:$controller_plugin:kp=1,kd=1,ki=3"
+refused "a missing file" "no-such.so" "$netmc" sim -q --controller "plugin:$tmp/no-such.so:kp=1,kd=1"
+
+# netmc-server loads only the plugins its operator named (--allow-plugin); then a lockstep run
+# over DDS equals netmc sim byte for byte.
+start x "$build/server/axis/netmc-axis" --node cp-x --axes x --domain "$domain" --transport udp
+start y "$build/server/axis/netmc-axis" --node cp-y --axes y --domain "$domain" --transport udp
+start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+  --allow-plugin "$controller_plugin"
+port=$(server_port 127.0.0.1)
+refused "a plugin the server was not given" "not a file this server loads" \
+  "$netmc" run --server "127.0.0.1:$port" -q --controller "plugin:$tmp/old-version/build/libexample_controller.so:kp=1,kd=1"
+"$netmc" run --server "127.0.0.1:$port" --quiet --iterations 3 --controller "$pd+ilccc" --json "$tmp/dds.json" >/dev/null
+sim --controller "$pd+ilccc" --json "$tmp/sim.json" >/dev/null
+same_json "$tmp/sim.json" "$tmp/dds.json" "plugin controller, lockstep over DDS,"

@@ -144,7 +144,9 @@ TEST(ContourJobRunner, InvalidJobsNameTheField) {
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("sample_period"), std::string::npos);
   }
-  job = small_circle_job("adrc+magic");
+  EXPECT_THROW(small_circle_job("adrc+magic"), std::invalid_argument);
+  job = small_circle_job();
+  job.controller_factory = nullptr;  // a job built without resolving its controller
   EXPECT_THROW(ContourJobRunner{job}, std::invalid_argument);
 }
 

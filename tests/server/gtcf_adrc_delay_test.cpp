@@ -13,7 +13,7 @@ namespace {
 IterationMetrics run_thesis_ellipse(std::unique_ptr<netsim::DelayModel> delay) {
   ContourJob job = testing::thesis_ellipse_job("gtcf-adrc", 2.0);
   job.downlink.delay = std::move(delay);
-  job.evaluation_start_s = job.trajectory->period_s();
+  job.evaluation_start_s = testing::planar_trajectory(job).period_s();
   job.seed = 3;
   return ContourJobRunner(job).run_iteration().metrics;
 }

@@ -4,18 +4,18 @@
 
 #include <fstream>
 
+#include "server/job/controller_gains.hpp"
 #include "server/job/job_builder.hpp"
+#include "tests/server/job_build_error.hpp"
 
 namespace netmc::job {
 namespace {
 
-std::string error_of(const netmc::v1::JobSpec& spec) {
-  try {
-    build_contour_job(spec);
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "";
+// The built controller's own account of its gains.
+std::string controller_of(const sim::ContourJob& job) { return job.make_controller()->describe(); }
+
+const control::ReferenceTrajectory& trajectory_of(const sim::ContourJob& job) {
+  return *std::get<std::shared_ptr<const control::ReferenceTrajectory>>(job.reference);
 }
 
 netmc::v1::JobSpec valid_spec() {
@@ -37,8 +37,8 @@ TEST(JobBuilder, JsonSpecWithDefaults) {
   const auto job = build_contour_job(spec);
   EXPECT_EQ(job.iterations, 3u);
   EXPECT_EQ(job.cycles(), 1601u);
-  EXPECT_EQ(job.controller.ilccc.kcp, 30.0);
-  EXPECT_EQ(job.controller.ilccc.kcd, 40.0);  // unset: paper 001
+  // kcd unset: paper 001's 40.
+  EXPECT_NE(controller_of(job).find("ilccc(kcp=30, kcd=40)"), std::string::npos) << controller_of(job);
   EXPECT_NEAR(job.downlink.delay->mean_s(), 0.00055, 1e-15);
 }
 
@@ -50,19 +50,19 @@ TEST(JobBuilder, ContourLibraryShapesFromJson) {
   };
   const auto figure = build(R"({"lissajous": {"amplitude_x_m": 0.02, "amplitude_y_m": 0.015, "frequency_x": 3,
                                                "frequency_y": 2, "center_x_m": 0.05, "center_y_m": 0.05, "period_s": 20}})");
-  EXPECT_DOUBLE_EQ(figure.trajectory->duration_s(), 20.0);
-  EXPECT_NEAR(figure.trajectory->sample(0.0).position.y(), 0.05, 1e-15);
+  EXPECT_DOUBLE_EQ(trajectory_of(figure).duration_s(), 20.0);
+  EXPECT_NEAR(trajectory_of(figure).sample(0.0).position.y(), 0.05, 1e-15);
   const auto fed = build(R"({"lissajous": {"amplitude_x_m": 0.02, "amplitude_y_m": 0.015, "frequency_x": 3,
                                             "frequency_y": 2, "feed": {"feed_m_s": 0.01, "max_normal_acceleration_m_s2": 0.02}}})");
-  EXPECT_LT(fed.trajectory->sample(0.0).velocity.norm(), 1e-15);  // from rest
-  EXPECT_NE(fed.trajectory->describe().find("feed=10 mm/s"), std::string::npos);
+  EXPECT_LT(trajectory_of(fed).sample(0.0).velocity.norm(), 1e-15);  // from rest
+  EXPECT_NE(trajectory_of(fed).describe().find("feed=10 mm/s"), std::string::npos);
   const auto square = build(R"({"polyline": {"points": [{"x_m": 0, "y_m": 0}, {"x_m": 0.02, "y_m": 0}, {"x_m": 0.02, "y_m": 0.01}],
                                              "max_speed_m_s": 0.01, "max_acceleration_m_s2": 0.05}})");
-  EXPECT_NEAR(square.trajectory->duration_s(), (0.02 / 0.01 + 0.2) + (0.01 / 0.01 + 0.2), 1e-12);
+  EXPECT_NEAR(trajectory_of(square).duration_s(), (0.02 / 0.01 + 0.2) + (0.01 / 0.01 + 0.2), 1e-12);
   const auto spline = build(R"({"spline": {"points": [{"x_m": 0, "y_m": 0}, {"x_m": 0.03, "y_m": -0.005}, {"x_m": 0.05, "y_m": 0.01},
                                                        {"x_m": 0.02, "y_m": 0.02}, {"x_m": 0, "y_m": 0}],
                                             "feed": {"feed_m_s": 0.02, "max_normal_acceleration_m_s2": 0.05}}})");
-  EXPECT_LT(spline.trajectory->sample(spline.trajectory->duration_s()).position.norm(), 1e-15);
+  EXPECT_LT(trajectory_of(spline).sample(trajectory_of(spline).duration_s()).position.norm(), 1e-15);
 
   const auto error = [&](const std::string& trajectory) {
     auto spec = parse_job_spec_json(R"({"trajectory": )" + trajectory + "}", "test");
@@ -88,8 +88,9 @@ TEST(JobBuilder, ErrorsNameTheField) {
   EXPECT_NE(error_of(spec).find("sample_period"), std::string::npos);
 
   spec = valid_spec();
-  spec.mutable_controller()->mutable_adrc()->set_kp(std::nan(""));
-  EXPECT_NE(error_of(spec).find("adrc kp"), std::string::npos);
+  set_gain(*spec.mutable_controller(), "adrc", "kp", std::nan(""));
+  EXPECT_NE(error_of(spec).find("controller.gains.adrc.kp: expected a finite number"), std::string::npos)
+      << error_of(spec);
 
   spec = valid_spec();
   spec.mutable_downlink()->mutable_delay()->mutable_uniform()->set_min_s(0.002);
@@ -114,55 +115,56 @@ TEST(JobBuilder, ErrorsNameTheField) {
 }
 
 TEST(JobBuilder, PerAxisAdrcAndTaskSpaceAdrcGains) {
+  // The gains by group, the y axis's own under axes.
   auto spec = parse_job_spec_json(R"({
     "trajectory": {"circle": {"radius_m": 0.04, "period_s": 0.4}},
     "controller": {"name": "adrc",
-                   "adrc": {"w0": 1500, "b0": 10, "kp": 9000},
-                   "adrc_y": {"b0": 1.8, "observer": "zoh"},
-                   "gtcf_adrc": {"wc": 250, "wom": 400, "observer": "zoh"}}
+                   "gains": {"adrc": {"values": {"w0": 1500, "b0": 10, "kp": 9000},
+                                      "axes": {"y": {"values": {"b0": 1.8}, "choices": {"observer": "zoh"}}}},
+                             "gtcf_adrc": {"values": {"wc": 250, "wom": 400}, "choices": {"observer": "zoh"}}}}
   })", "test");
   apply_defaults(spec);
-  const auto job = build_contour_job(spec);
-  ASSERT_TRUE(job.controller.adrc_y.has_value());
-  // The y axis takes the x axis's gains where its own are unset.
-  EXPECT_EQ(job.controller.adrc_y->input_gain, 1.8);
-  EXPECT_EQ(job.controller.adrc_y->observer_bandwidth, 1500.0);
-  EXPECT_EQ(job.controller.adrc_y->kp, 9000.0);
-  EXPECT_EQ(job.controller.adrc_y->observer_discretization, control::Discretization::zero_order_hold);
-  EXPECT_EQ(job.controller.adrc.observer_discretization, control::Discretization::forward_euler);
-  const auto& g = job.controller.gtcf_adrc;
-  EXPECT_EQ(g.loop_bandwidth, Eigen::Vector2d(250.0, control::GtcfAdrcGains{}.loop_bandwidth[1]));
-  EXPECT_EQ(g.observer_bandwidth, Eigen::Vector2d(control::GtcfAdrcGains{}.observer_bandwidth[0], 400.0));
-  EXPECT_EQ(g.discretization, control::Discretization::zero_order_hold);
-
-  spec.mutable_controller()->mutable_gtcf_adrc()->set_observer("rk4");
-  EXPECT_NE(error_of(spec).find("controller.gtcf_adrc.observer"), std::string::npos);
-  spec.mutable_controller()->mutable_gtcf_adrc()->set_observer("");
+  const std::string adrc = controller_of(build_contour_job(spec));
+  // The y axis takes the group's gains where it has none of its own.
+  EXPECT_NE(adrc.find("adrc(r0=160, w0=1500, b0=10, kp=9000, kd=6, observer=euler) x "
+                      "adrc(r0=160, w0=1500, b0=1.8, kp=9000, kd=6, observer=zoh)"),
+            std::string::npos)
+      << adrc;
   spec.mutable_controller()->set_name("gtcf-adrc");
-  spec.mutable_controller()->mutable_gtcf_adrc()->set_wc(-1.0);
-  EXPECT_NE(error_of(spec).find("gtcf-adrc loop bandwidth"), std::string::npos);
+  const std::string gtcf = controller_of(build_contour_job(spec));
+  EXPECT_NE(gtcf.find("gtcf-adrc(wc=250, wm=100, woc=1500, wom=400, observer=zoh"), std::string::npos) << gtcf;
+
+  set_gain_choice(*spec.mutable_controller(), "gtcf_adrc", "observer", "rk4");
+  EXPECT_NE(error_of(spec).find("controller.gains.gtcf_adrc.observer: expected euler or zoh"), std::string::npos)
+      << error_of(spec);
+  set_gain_choice(*spec.mutable_controller(), "gtcf_adrc", "observer", "euler");
+  set_gain(*spec.mutable_controller(), "gtcf_adrc", "wc", -1.0);
+  EXPECT_NE(error_of(spec).find("controller.gains.gtcf_adrc.wc: expected a positive finite number"), std::string::npos)
+      << error_of(spec);
 }
 
-TEST(JobBuilder, TaskSpaceFilterAndInitialPosition) {
-  auto spec = parse_job_spec_json(R"({
-    "trajectory": {"circle": {"radius_m": 0.04, "center_y_m": 0.05, "period_s": 0.4, "clockwise": true}},
-    "plant": "linmotor",
-    "controller": {"name": "gtcf-darc", "task_space": {"initialization_filter": true, "filter_wm": 2}},
-    "initial_position": {"x_m": 0.0, "y_m": 0.0}
-  })", "test");
-  apply_defaults(spec);
-  const auto job = build_contour_job(spec);
-  EXPECT_TRUE(job.controller.initialization_filter.enabled);
-  EXPECT_EQ(job.controller.initialization_filter.contour_bandwidth, 8.0);  // unset: thesis
-  EXPECT_EQ(job.controller.initialization_filter.tangential_bandwidth, 2.0);
-  ASSERT_TRUE(job.initial_position.has_value());
-  EXPECT_EQ(job.start_position(), Eigen::Vector2d(0.0, 0.0));
-  // Unset, the axes start on the trajectory.
-  spec.clear_initial_position();
-  EXPECT_EQ(build_contour_job(spec).start_position(), Eigen::Vector2d(0.04, 0.05));
-  // The filter lives in the global task frame only.
-  spec.mutable_controller()->set_name("ltcf-sarc");
-  EXPECT_NE(error_of(spec).find("controller: initialization filter"), std::string::npos);
+// netmc 0.1's spec files named a message per family (adrc, adrc_y, ...), in snake_case or
+// camelCase: they are read into the gains they stand for and build the same controller.
+TEST(JobBuilder, LegacyTypedGainsReadAsTheGainsTheyStandFor) {
+  const auto build = [](const std::string& controller) {
+    auto spec = parse_job_spec_json(R"({"trajectory": {"circle": {"radius_m": 0.04, "period_s": 0.4}},
+                                        "axes": ["a", "b"], "controller": )" + controller + "}",
+                                    "test");
+    apply_defaults(spec);
+    return controller_of(build_contour_job(spec));
+  };
+  const std::string legacy = build(R"({"name": "adrc+ilccc",
+      "adrc": {"w0": 1500, "observer_sees_sent_command": true}, "adrcY": {"b0": 1.8, "observer": "zoh"},
+      "ilccc": {"kcp": 30, "qCutoffHz": 20, "lead_samples": 2}})");
+  const std::string current = build(R"({"name": "adrc+ilccc", "gains": {
+      "adrc": {"values": {"w0": 1500}, "choices": {"observer_input": "sent"},
+               "axes": {"b": {"values": {"b0": 1.8}, "choices": {"observer": "zoh"}}}},
+      "ilccc": {"values": {"kcp": 30, "q_cutoff_hz": 20, "lead_samples": 2}}}})");
+  EXPECT_EQ(legacy, current);
+  EXPECT_NE(legacy.find("b0=1.8, kp=0.08, kd=6, observer=zoh, observer input=sent"), std::string::npos) << legacy;
+  EXPECT_NE(legacy.find("q=20 Hz, lead=2"), std::string::npos) << legacy;
+  // A file with both forms is refused (the legacy field is unknown to the current spec).
+  EXPECT_THROW(build(R"({"name": "adrc", "adrc": {"w0": 1500}, "gains": {}})"), std::invalid_argument);
 }
 
 TEST(JobBuilder, JsonOutputUsesProtoFieldNames) {
@@ -233,7 +235,7 @@ TEST(JobBuilder, PlantOverridesAndDisturbancesPerAxis) {
   })", "test");
   apply_defaults(spec);
   const sim::ContourJob job = build_contour_job(spec);
-  EXPECT_NE(job.trajectory->describe().find("heart"), std::string::npos);
+  EXPECT_NE(trajectory_of(job).describe().find("heart"), std::string::npos);
   const std::string x = job.axes[0]->describe(), y = job.axes[1]->describe();
   // paper 002's 3 kg load: J' = 0.8e-3 + 3 * 0.005^2 = 0.875e-3 kg m^2 (digest 3.7 [A])
   EXPECT_NE(y.find("0.000875"), std::string::npos) << y;
@@ -279,25 +281,18 @@ TEST(JobBuilder, Paper004GainsAndMotions) {
   })", "test");
   apply_defaults(spec);
   const sim::ContourJob job = build_contour_job(spec);
-  const auto& c = job.controller;
-  EXPECT_EQ(c.ffpid_x.mass_kg, 24.0);  // Table 1
-  EXPECT_EQ(c.ffpid_x.bandwidth_hz, 40.0);
-  EXPECT_EQ(c.ffpid_x.alpha, 3.0);
-  EXPECT_EQ(c.ffpid_x.low_pass_damping, 0.7);
-  EXPECT_EQ(c.ffpid_x.feedforward_fraction, 0.9);
-  EXPECT_EQ(c.ffpid_y.mass_kg, 32.0);
-  EXPECT_EQ(c.ffpid_y.bandwidth_hz, 50.0);  // Table 2
-  EXPECT_EQ(c.ffpid_y.alpha, 2.5);
-  EXPECT_EQ(c.ffpid_y.low_pass_damping, 0.5);
-  EXPECT_EQ(c.ffpid_y.feedforward_fraction, 0.85);
-  EXPECT_EQ(c.lpccc.kp, 4e5);
-  EXPECT_EQ(c.lpccc.ki, 1e8);  // Table 3
-  EXPECT_EQ(c.lpccc.kd, 3.0);
-  EXPECT_EQ(c.lpccc.low_pass_hz, 120.0);
-  EXPECT_EQ(c.lpccc.low_pass_damping, 0.707);
+  // Unset: Table 1 (x: 24 kg, alpha 3), Table 2 (y: 50 Hz, 85 %), Table 3 (lpccc).
+  const std::string c = controller_of(job);
+  EXPECT_NE(c.find("ffpid(m=24 kg, f_bw=40 Hz, alpha=3, ff=0.9)"), std::string::npos) << c;
+  EXPECT_NE(c.find("ffpid(m=32 kg, f_bw=50 Hz, alpha=2.5, ff=0.85)"), std::string::npos) << c;
+  // eq. 13: (kd s^2 + kp s + ki) wn^2 / (s (s^2 + 2 z wn s + wn^2)), wn = 2 pi 120 Hz, z = 0.707, kp
+  // 4e5 given, ki 1e8 and kd 3 from Table 3.
+  EXPECT_NE(c.find("lpccc(C(s) = (1.70547e+06 s^2 + 2.27396e+11 s + 5.68489e+13) / (s^3 + 1066.13 s^2 + 568489 s))"),
+            std::string::npos)
+      << c;
   EXPECT_EQ(job.cycles(), 50001u);  // 2.5 s at 20 kHz: the circle's 2 s and 0.5 s at rest
-  EXPECT_NE(job.trajectory->describe().find("ramp=0.2 s"), std::string::npos);
-  EXPECT_EQ(job.trajectory->sample(2.2).velocity.norm(), 0.0);
+  EXPECT_NE(trajectory_of(job).describe().find("ramp=0.2 s"), std::string::npos);
+  EXPECT_EQ(trajectory_of(job).sample(2.2).velocity.norm(), 0.0);
   const std::string detail = job.make_controller()->describe();
   EXPECT_NE(detail.find("lpccc"), std::string::npos) << detail;
   EXPECT_NE(detail.find("m=32 kg"), std::string::npos) << detail;
@@ -307,24 +302,27 @@ TEST(JobBuilder, Paper004GainsAndMotions) {
     "max_speed_m_s": 0.1, "max_acceleration_m_s2": 1, "max_jerk_m_s3": 10}}})", "test");
   auto sharp_spec = spec;
   *sharp_spec.mutable_trajectory() = sharp.trajectory();
-  EXPECT_NEAR(build_contour_job(sharp_spec).trajectory->duration_s(), 2.4, 1e-12);
+  EXPECT_NEAR(trajectory_of(build_contour_job(sharp_spec)).duration_s(), 2.4, 1e-12);
 
   const auto error_with = [&](const std::string& controller) {
     auto bad = spec;
     *bad.mutable_controller() = parse_job_spec_json(R"({"controller": )" + controller + "}", "test").controller();
     return error_of(bad);
   };
-  EXPECT_NE(error_with(R"({"name": "ffpid", "ffpid_x": {"mass_kg": -24}})").find("controller.ffpid_x.mass_kg: expected a positive"),
+  EXPECT_NE(error_with(R"({"name": "ffpid", "ffpid_x": {"mass_kg": -24}})")
+                .find("controller.gains.ffpid.axes.x.mass_kg: expected a positive finite number"),
             std::string::npos);
-  EXPECT_NE(error_with(R"({"name": "ffpid", "ffpid_y": {"alpha": 0}})").find("controller.ffpid_y.alpha"), std::string::npos);
-  EXPECT_NE(error_with(R"({"name": "ffpid", "ffpid_y": {"low_pass_damping": -1}})").find("controller.ffpid_y.low_pass_damping"),
+  EXPECT_NE(error_with(R"({"name": "ffpid", "ffpid_y": {"alpha": 0}})").find("controller.gains.ffpid.axes.y.alpha"),
             std::string::npos);
-  EXPECT_NE(error_with(R"({"name": "ffpid+lpccc", "lpccc": {"low_pass_hz": 0}})").find("controller.lpccc.low_pass_hz"),
+  EXPECT_NE(error_with(R"({"name": "ffpid", "ffpid_y": {"low_pass_damping": -1}})")
+                .find("controller.gains.ffpid.axes.y.low_pass_damping"),
+            std::string::npos);
+  EXPECT_NE(error_with(R"({"name": "ffpid+lpccc", "lpccc": {"low_pass_hz": 0}})").find("controller.gains.lpccc.low_pass_hz"),
             std::string::npos);
   // alpha f_bw = 3 x 5000 Hz is beyond the 10 kHz Nyquist frequency of the 20 kHz loop.
   const std::string nyquist = error_with(R"({"name": "ffpid", "ffpid_x": {"bandwidth_hz": 5000}})");
   EXPECT_NE(nyquist.find("controller: ffpid alpha * bandwidth_hz"), std::string::npos) << nyquist;
-  EXPECT_NE(error_with(R"({"name": "ffpid+qft"})").find("ffpid+qftccc"), std::string::npos);
+  EXPECT_NE(error_with(R"({"name": "ffpid+qft"})").find("unknown name 'ffpid+qft'"), std::string::npos);
 
   auto long_ramp = spec;
   long_ramp.mutable_trajectory()->mutable_circle()->set_ramp_s(1.5);

@@ -19,8 +19,10 @@ namespace {
 IterationMetrics run_thesis_ellipse(const std::string& controller, double halt_at_s = -1.0) {
   ContourJob job = testing::thesis_ellipse_job(controller, 3.0);
   if (halt_at_s >= 0.0) {
-    job.trajectory = std::make_shared<control::HaltedTrajectory>(job.trajectory, halt_at_s, 0.004);
+    job.reference = std::make_shared<control::HaltedTrajectory>(
+        std::get<std::shared_ptr<const control::ReferenceTrajectory>>(job.reference), halt_at_s, 0.004);
     job.command_limit = 10.0;
+    testing::use_controller(job, controller);  // for the halted reference
   }
   return ContourJobRunner(job).run_iteration().metrics;
 }
@@ -60,8 +62,10 @@ TEST(SarcStudy, SuddenHaltCostsTheLocalFrameMoreThanTheGlobalFrame) {
 TEST(SarcStudy, LocalFrameLosesToGlobalFrameWhenTheTangentialErrorIsLarge) {
   const auto soft = [](const std::string& controller) {
     ContourJob job = testing::thesis_ellipse_job(controller, 7.0);
-    job.controller.sarc.lambda[1] = 2.0;
-    job.controller.sarc.feedback[1] = 5.0;
+    netmc::v1::ControllerSpec spec;
+    job::set_gain(spec, "task_space", "lambda_m", 2.0);
+    job::set_gain(spec, "task_space", "k_m", 5.0);
+    testing::use_controller(job, controller, spec);
     return ContourJobRunner(job).run_iteration().metrics;
   };
   const auto gtcf_soft = soft("gtcf-sarc");

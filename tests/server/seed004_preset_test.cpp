@@ -38,10 +38,9 @@ TEST(Seed004Preset, RunsThePapersSetUp) {
     EXPECT_EQ(spec.evaluation_start_s(), 5e-5) << spec.name();
     EXPECT_EQ(spec.controller().estimator(), "tangent") << spec.name();  // eq. 3
     // The paper's gains: nothing overridden.
-    EXPECT_FALSE(spec.controller().has_ffpid_x() || spec.controller().has_ffpid_y() || spec.controller().has_lpccc())
-        << spec.name();
+    EXPECT_TRUE(spec.controller().gains().empty()) << spec.name();
     const auto job = job::build_contour_job(spec);
-    EXPECT_NEAR(job.duration_s - job.trajectory->duration_s(), 0.5, 1e-12) << spec.name();  // settling
+    EXPECT_NEAR(job.duration_s - std::get<std::shared_ptr<const control::ReferenceTrajectory>>(job.reference)->duration_s(), 0.5, 1e-12) << spec.name();  // settling
   }
   const auto& circle = plan.jobs.front().trajectory().circle();
   EXPECT_DOUBLE_EQ(circle.radius_m(), 1.0 / (5.0 * std::numbers::pi));

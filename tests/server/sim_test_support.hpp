@@ -9,14 +9,29 @@
 #include "control/trajectory/ellipse_trajectory.hpp"
 #include "plant/plant_catalog.hpp"
 #include "plant/second_order_axis.hpp"
+#include "server/job/controller_registry.hpp"
 #include "server/sim/contour_job.hpp"
 
 namespace netmc::sim::testing {
 
+// The job's controller `name` as netmc builds it (the registry), with `spec`'s gains. Call again
+// after changing the job's reference or axes: the controller is built for them.
+inline void use_controller(ContourJob& job, const std::string& name, netmc::v1::ControllerSpec spec = {}) {
+  spec.set_name(name);
+  job.controller_name = name;
+  job.controller_factory = job::ControllerRegistry::global().resolve(spec, job.reference, job.axis_names,
+                                                                     job.sample_period_s);
+}
+
+// The planar trajectory of a two-axis job.
+inline const control::ReferenceTrajectory& planar_trajectory(const ContourJob& job) {
+  return *std::get<std::shared_ptr<const control::ReferenceTrajectory>>(job.reference);
+}
+
 inline ContourJob small_circle_job(const std::string& controller = "adrc") {
   ContourJob job;
-  job.trajectory = std::make_shared<control::CircleTrajectory>(
-      control::CircleParameters{{0.05, 0.05}, 0.01, 2.0});
+  job.reference = std::make_shared<control::CircleTrajectory>(control::CircleParameters{{0.05, 0.05}, 0.01, 2.0});
+  job.axis_names = {"x", "y"};
   plant::SecondOrderAxisParameters axis;
   axis.a1 = 0.0;
   axis.a2 = -20.0;
@@ -24,10 +39,10 @@ inline ContourJob small_circle_job(const std::string& controller = "adrc") {
   job.axes = {std::make_shared<plant::SecondOrderAxis>(axis),
               std::make_shared<plant::SecondOrderAxis>(axis)};
   job.plant_name = "linear";
-  job.controller_name = controller;
   job.sample_period_s = 0.005;
   job.iterations = 1;
   job.seed = 7;
+  use_controller(job, controller);
   return job;
 }
 
@@ -42,13 +57,14 @@ inline ContourJob thesis_ellipse_job(const std::string& controller, double revol
   ellipse.period_s = 2.0 * std::numbers::pi / 7.0;
   ellipse.start_angle_rad = -std::numbers::pi / 2.0;
   ellipse.revolutions = revolutions;
-  job.trajectory = std::make_shared<control::EllipseTrajectory>(ellipse);
+  job.reference = std::make_shared<control::EllipseTrajectory>(ellipse);
+  job.axis_names = {"x", "y"};
   auto plants = plant::make_plant_set("linmotor", 2);
   for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
   job.plant_name = "linmotor";
-  job.controller_name = controller;
   job.sample_period_s = 2e-4;
   job.sensor.resolution_m = 0.5e-6;
+  use_controller(job, controller);
   return job;
 }
 

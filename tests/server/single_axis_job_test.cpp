@@ -16,6 +16,7 @@
 
 #include "client/presets.hpp"
 #include "client/spec_syntax.hpp"
+#include "server/job/controller_gains.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/sim/contour_job_runner.hpp"
 
@@ -192,8 +193,9 @@ TEST(SingleAxisJob, BadSpecsNameTheField) {
   spec.mutable_controller()->set_name("gtcf-sarc");
   EXPECT_EQ(message(spec).rfind("controller:", 0), 0u) << message(spec);
   spec = preset_job("C4 I");
-  spec.mutable_controller()->mutable_axis_diarc()->mutable_exact_dead_zone()->set_right_slope(-1.0);
-  EXPECT_EQ(message(spec).rfind("controller.axis_diarc.exact_dead_zone", 0), 0u) << message(spec);
+  job::set_gain(*spec.mutable_controller(), "axis_diarc", "right_slope", -1.0);
+  EXPECT_EQ(message(spec).rfind("controller.gains.axis_diarc.right_slope: expected a positive finite number", 0), 0u)
+      << message(spec);
 }
 
 TEST(SingleAxisJob, CommandLineFormIsTheSpecsForm) {

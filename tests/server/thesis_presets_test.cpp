@@ -68,7 +68,7 @@ TEST(ThesisPresets, CaseBStartsFromRestThroughTheInitializationFilter) {
     const auto job = std::find_if(circle.jobs.begin(), circle.jobs.end(),
                                   [&](const auto& j) { return j.name() == label; });
     ASSERT_NE(job, circle.jobs.end()) << label;
-    ASSERT_TRUE(job->controller().task_space().initialization_filter());
+    ASSERT_EQ(job->controller().gains().at("task_space").choices().at("initialization_filter"), "on");
     const auto record = run(*job, {3.0, 2.0});
     ASSERT_FALSE(record.metrics.diverged) << label;
     // The stage starts 1 cm outside the circle (exact contour error 10 mm at t = 0).
