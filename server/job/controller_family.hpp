@@ -2,7 +2,7 @@
 // One controller family as netmc knows it: its names, the gains it reads (its own group, and any
 // shared one such as task_space), what it is and where it comes from (for --help and the docs'
 // table), the plants its defaults are tuned for, and how it is built. A family is one file under
-// server/job/controllers/ and one line in controller_registry.cpp; --help, spec checking, netmc
+// server/job/controllers/ and one line in controllers/registered_controllers.inc; --help, spec checking, netmc
 // sim, netmc-server and the docs' table (netmc sim --list-controllers) take it from there.
 //
 // Roles: an axis law (one per axis: adrc, pid) composes with a contour compensator (pidccc,

@@ -50,20 +50,9 @@ ControllerRegistry& ControllerRegistry::global() {
   static ControllerRegistry registry = [] {
     ControllerRegistry built_in;
     // One line per family file (server/job/controllers/).
-    register_adrc(built_in);
-    register_pid(built_in);
-    register_pid_cross_coupling(built_in);
-    register_iterative_learning(built_in);
-    register_low_pass_pid_cross_coupling(built_in);
-    register_qft_cross_coupling(built_in);
-    register_feedforward_pid(built_in);
-    register_task_space(built_in);
-    register_task_space_adrc(built_in);
-    register_data_driven(built_in);
-    register_dead_zone_tracking(built_in);
-#ifdef NETMC_TEST_COMPONENTS
-    register_test_pd(built_in);  // tests/components/test_pd_controller.cpp
-#endif
+#define NETMC_CONTROLLER(name) register_##name(built_in);
+#include "server/job/controllers/registered_controllers.inc"
+#undef NETMC_CONTROLLER
     return built_in;
   }();
   return registry;

@@ -1,8 +1,8 @@
 #pragma once
 // Every controller family netmc runs, in one place: the built-in ones register here (one line
-// each in controller_registry.cpp), tests and plugins may add more. The registry resolves a
-// job's controller name (FAMILY, AXIS+COMPENSATOR, or plugin:PATH.so[:KEY=VALUE,...]), checks its
-// gains against the families' declared keys, and writes the help and the docs' table.
+// each in controllers/registered_controllers.inc). The registry resolves a job's controller name
+// (FAMILY, AXIS+COMPENSATOR, or plugin:PATH.so[:KEY=VALUE,...]), checks its gains against the
+// families' declared keys, and writes the help and the docs' table.
 
 #include <functional>
 #include <memory>
@@ -63,19 +63,9 @@ class ControllerRegistry {
   std::vector<ControllerFamily> families_;
 };
 
-// Each built-in family file's registration (controllers/*.cpp).
-void register_adrc(ControllerRegistry& registry);
-void register_pid(ControllerRegistry& registry);
-void register_pid_cross_coupling(ControllerRegistry& registry);
-void register_iterative_learning(ControllerRegistry& registry);
-void register_low_pass_pid_cross_coupling(ControllerRegistry& registry);
-void register_qft_cross_coupling(ControllerRegistry& registry);
-void register_feedforward_pid(ControllerRegistry& registry);
-void register_task_space(ControllerRegistry& registry);
-void register_task_space_adrc(ControllerRegistry& registry);
-void register_data_driven(ControllerRegistry& registry);
-void register_dead_zone_tracking(ControllerRegistry& registry);
-// The test suite's own (tests/components), in builds with NETMC_TEST_COMPONENTS.
-void register_test_pd(ControllerRegistry& registry);
+// Each built-in family file's registration (controllers/registered_controllers.inc).
+#define NETMC_CONTROLLER(name) void register_##name(ControllerRegistry& registry);
+#include "server/job/controllers/registered_controllers.inc"
+#undef NETMC_CONTROLLER
 
 }  // namespace netmc::job

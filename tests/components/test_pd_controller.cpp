@@ -1,6 +1,7 @@
 // A controller of the test suite's own, added the way a researcher adds one: this file (the law
-// and its descriptor) and one registration line in server/job/controller_registry.cpp. Built
-// only with -DNETMC_TEST_COMPONENTS=ON (the test suite's build); tests/components/README.md.
+// and its descriptor) and one registration line in server/job/controllers/registered_controllers.inc.
+// Built only with -DNETMC_TEST_COMPONENTS=ON (the test suite's build, scripts/test.sh), so
+// installed netmc does not carry it; integration.own_controller runs it.
 //
 // The law: u = kp e + kd (e(k) - e(k-1)) / h on the position error e = x_d - y, an axis law that
 // composes with every contour compensator (test-pd+ilccc).

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # A controller added as a researcher adds one: tests/components/test_pd_controller.cpp (the law
-# and its descriptor) and one registration line, in a build with -DNETMC_TEST_COMPONENTS=ON. It
-# must show in netmc sim --help (its name and its gains flag), run from a spec file with per-axis
-# gains, and give the same JSON, byte for byte, over DDS in lockstep as netmc sim in-process.
+# and its descriptor) and one registration line (server/job/controllers/registered_controllers.inc),
+# in a build with -DNETMC_TEST_COMPONENTS=ON. It must show in netmc sim --help (its name and its
+# gains flag), run from a spec file with per-axis gains, and give the same JSON, byte for byte,
+# over DDS in lockstep as netmc sim in-process.
 # Usage: own_controller.sh BUILD_DIR
 set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
