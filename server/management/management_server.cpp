@@ -1,5 +1,7 @@
 #include "server/management/management_server.hpp"
 
+#include <algorithm>
+
 #include <chrono>
 #include <vector>
 
@@ -69,6 +71,13 @@ void ManagementServer::accept(const std::shared_ptr<State>& state) {
     }
     accept(state);
   });
+}
+
+std::size_t ManagementServer::open_connections() const {
+  return static_cast<std::size_t>(std::count_if(state_->sessions.begin(), state_->sessions.end(), [](const auto& s) {
+    const auto session = s.lock();
+    return session && session->open();
+  }));
 }
 
 ManagementServer::ManagementServer(asio::io_context& io, const std::string& bind_address,

@@ -45,6 +45,8 @@ class ManagementServer {
 
   // The port listened on (the ephemeral one chosen when constructed with 0).
   std::uint16_t port() const { return port_; }
+  // Open connections; call on the io_context's thread.
+  std::size_t open_connections() const;
 
   // Thread-safe, idempotent: stops accepting and closes every open session (queued responses
   // are dropped). Once the handler's own work is done, io_context::run() returns.

@@ -19,6 +19,7 @@
 
 #include "idl/management.pb.h"
 #include "server/management/frame_codec.hpp"
+#include "server/management/peer.hpp"
 
 namespace netmc::management {
 
@@ -32,7 +33,7 @@ struct SessionLimits {
   std::chrono::milliseconds frame_timeout{std::chrono::seconds(30)};
 };
 
-class Session : public std::enable_shared_from_this<Session> {
+class Session final : public Peer, public std::enable_shared_from_this<Session> {
  public:
   // Called on the io_context thread, on this session's strand, once per Request.
   using Dispatch = std::function<void(Session&, const netmc::v1::Request&)>;
@@ -51,15 +52,15 @@ class Session : public std::enable_shared_from_this<Session> {
 
   // Thread-safe, from any thread: queues the response; responses leave in the order of the
   // calls. Dropped once the session is closed. Throws FrameError for a message over 16 MiB.
-  void send(const netmc::v1::Response& response);
+  void send(const netmc::v1::Response& response) override;
 
   // Thread-safe: false once the connection is closed or closing (by either side).
-  bool open() const { return open_.load(std::memory_order_acquire); }
+  bool open() const override { return open_.load(std::memory_order_acquire); }
 
   // Thread-safe: a session with work under way (a job it submitted) is not idle however long it
   // stays silent; each hold() is undone by one release().
-  void hold() { holds_.fetch_add(1, std::memory_order_acq_rel); }
-  void release() { holds_.fetch_sub(1, std::memory_order_acq_rel); }
+  void hold() override { holds_.fetch_add(1, std::memory_order_acq_rel); }
+  void release() override { holds_.fetch_sub(1, std::memory_order_acq_rel); }
 
   // Thread-safe: stops reading, sends the responses already queued, then closes the socket.
   void close();

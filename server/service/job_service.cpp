@@ -67,7 +67,7 @@ JobService::~JobService() {
   scheduler_.join();  // it joins every job thread before it returns
 }
 
-void JobService::handle(const std::shared_ptr<management::Session>& session,
+void JobService::handle(const std::shared_ptr<management::Peer>& session,
                         const netmc::v1::Request& request, bool admin) {
   netmc::v1::Response response;
   response.set_request_id(request.request_id());
@@ -98,10 +98,34 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
                                                                "(or a client with the admin token) may cancel the job"));
         return;
       }
-      it->second->cancel_reason = admin && it->second->session.lock() != session ? "cancelled by an admin (netmc cancel)"
-                                                                                   : "cancelled by its client";
-      it->second->cancel.store(true);
-      *response.mutable_status()->add_jobs() = it->second->status;
+      Job& job = *it->second;
+      job.cancel_reason = admin && job.session.lock() != session ? "cancelled by an admin (netmc cancel)"
+                                                                 : "cancelled by its client";
+      job.cancel.store(true);
+      // A queued job leaves the queue now, not when the job ahead of it ends.
+      if (const auto queued = std::find(queue_.begin(), queue_.end(), it->second); queued != queue_.end()) {
+        queue_.erase(queued);
+        job.status.set_state("cancelled");
+        job.status.set_error(job.cancel_reason);
+        job.status.clear_waiting_for();
+        netmc::v1::JobFinished finished;
+        finished.set_job_id(job.id);
+        finished.set_state("cancelled");
+        finished.set_error(job.cancel_reason);
+        job.finished = finished;
+        end_watches(job, finished);
+        ended_.push_back(job.id);
+        if (const auto submitter = job.session.lock()) {
+          netmc::v1::Response end;
+          end.set_request_id(job.request_id);
+          *end.mutable_finished() = finished;
+          submitter->send(end);
+          submitter->release();
+        }
+        spdlog::info("job {} cancelled while queued", job.id);
+        wake_.notify_all();
+      }
+      *response.mutable_status()->add_jobs() = job.status;
       break;
     }
     case netmc::v1::Request::kStatus: {
@@ -185,6 +209,13 @@ void JobService::handle(const std::shared_ptr<management::Session>& session,
       return;
   }
   session->send(response);
+}
+
+ServiceTotals JobService::totals() const {
+  std::lock_guard lock(mutex_);
+  ServiceTotals totals = totals_;
+  for (const auto& [id, job] : jobs_) ++totals.jobs_by_state[job->status.state()];
+  return totals;
 }
 
 void JobService::fill_node_info(const NodeRecord& record, std::chrono::steady_clock::time_point now,
@@ -315,7 +346,7 @@ void JobService::reply(Job& job, netmc::v1::Response response) {
   if (auto session = job.session.lock()) session->send(response);
 }
 
-void JobService::start_watch(Job& job, const std::shared_ptr<management::Session>& session,
+void JobService::start_watch(Job& job, const std::shared_ptr<management::Peer>& session,
                              std::uint64_t request_id) {
   std::erase_if(job.watchers, [](const Watcher& watcher) {
     const auto other = watcher.session.lock();
@@ -550,13 +581,19 @@ void JobService::run(Job& job) {
     struct ReportForgeries {
       const JobChannels& channels;
       std::uint64_t job_id;
+      JobService& service;
       ~ReportForgeries() {
         if (channels.forged_samples == 0) return;
+        {
+          std::lock_guard lock(service.mutex_);
+          service.totals_.forged_samples += channels.forged_samples;
+        }
         spdlog::warn("job {}: dropped {} forged feedback or axis events (about its axes, from participants that do "
                      "not host them)",
                      job_id, channels.forged_samples);
       }
-    } report_forgeries{channels, job.id};
+    } report_forgeries{channels, job.id, *this};
+    std::uint64_t job_cycles = 0;  // per iteration, for the loop delay's count
     const auto on_iteration = [&](const sim::IterationRecord& record) {
       const auto metrics = job::to_proto(record.metrics);
       *done.mutable_result()->add_iterations() = metrics;
@@ -567,6 +604,17 @@ void JobService::run(Job& job) {
       *iteration.mutable_metrics() = metrics;
       {
         std::lock_guard lock(mutex_);
+        const auto& m = record.metrics;
+        ++totals_.iterations;
+        totals_.deadline_misses += m.deadline_misses;
+        totals_.lost_feedback += m.lost_feedback;
+        totals_.lost_setpoints += m.lost_setpoints;
+        totals_.tau_p50_s = m.tau_p50_s;
+        totals_.tau_p99_s = m.tau_p99_s;
+        totals_.tau_max_s = m.tau_max_s;
+        const std::uint64_t delays = job_cycles > m.lost_setpoints ? job_cycles - m.lost_setpoints : 0;
+        totals_.tau_sum_s += m.tau_mean_s * static_cast<double>(delays);
+        totals_.tau_count += delays;
         job.status.set_iterations_done(static_cast<std::uint32_t>(record.metrics.iteration));
         job.iterations.push_back(metrics);
         for (const auto& watcher : job.watchers) {
@@ -602,10 +650,14 @@ void JobService::run(Job& job) {
       RealtimeDdsRunner runner(channels, job.spec, job.id, {options_.axis_timeout, options_.silence_limit, options_.positioning_timeout},
                                clocks_.time_base(), offsets, options_.build_options());
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
+      job_cycles = runner.cycles();
+      if (auto live = options_.live_cycles ? options_.live_cycles(job.id) : nullptr) runner.set_cycle_listener(live);
       runner.run(on_iteration, job.cancel);
     } else {
       LockstepDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout, options_.build_options());
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
+      job_cycles = runner.cycles();
+      if (auto live = options_.live_cycles ? options_.live_cycles(job.id) : nullptr) runner.set_cycle_listener(live);
       runner.run(on_iteration, job.cancel);
     }
     if (job.cancel.load()) state = "cancelled";

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -23,6 +24,7 @@
 #include "server/service/clock_tracker.hpp"
 #include "server/service/dds_job_messages.hpp"
 #include "server/service/node_directory.hpp"
+#include "server/sim/cycle_listener.hpp"
 
 namespace netmc::service {
 
@@ -41,6 +43,9 @@ struct JobServiceOptions {
   bool admin_token_configured = false;
   // Controller plugins a job may name (netmc-server --allow-plugin), exact paths; none: no plugin.
   std::vector<std::string> allowed_plugins;
+  // A live view of each job's cycles (the console): called when a job starts running; null or
+  // unset: none.
+  std::function<std::shared_ptr<sim::CycleListener>(std::uint64_t job_id)> live_cycles;
 
   // How the server builds a job: the controller here (a plugin only if allowed), plants read
   // from files only on their axis nodes.
@@ -50,6 +55,20 @@ struct JobServiceOptions {
     build.controller_plugins.allowed = allowed_plugins;
     return build;
   }
+};
+
+// What the service has done since it started (netmc-server's /metrics).
+struct ServiceTotals {
+  std::uint64_t iterations = 0;
+  std::uint64_t deadline_misses = 0;
+  std::uint64_t lost_feedback = 0;
+  std::uint64_t lost_setpoints = 0;
+  std::uint64_t forged_samples = 0;  // feedback or axis events from participants not hosting the axis
+  // The loop delay: quantiles of the latest ended iteration, and sum and count over all.
+  double tau_p50_s = 0.0, tau_p99_s = 0.0, tau_max_s = 0.0;
+  double tau_sum_s = 0.0;
+  std::uint64_t tau_count = 0;
+  std::map<std::string, std::uint64_t> jobs_by_state;  // of the jobs the service still holds
 };
 
 class JobService {
@@ -64,8 +83,10 @@ class JobService {
   // (submitted specs are checked on a thread of their own).
   // `admin`: the request showed the admin token (--admin-token-file): it may cancel any job;
   // otherwise only the connection that submitted a job may.
-  void handle(const std::shared_ptr<management::Session>& session, const netmc::v1::Request& request,
+  void handle(const std::shared_ptr<management::Peer>& session, const netmc::v1::Request& request,
               bool admin = false);
+
+  ServiceTotals totals() const;
 
  private:
   // netmc nodes's view of one node (also the answer to a reset).
@@ -74,13 +95,13 @@ class JobService {
 
   // A connection following a job (netmc watch); the job keeps it from idling out till it ends.
   struct Watcher {
-    std::weak_ptr<management::Session> session;
+    std::weak_ptr<management::Peer> session;
     std::uint64_t request_id = 0;
   };
   struct Job {
     std::uint64_t id = 0;
     netmc::v1::JobSpec spec;
-    std::weak_ptr<management::Session> session;
+    std::weak_ptr<management::Peer> session;
     std::uint64_t request_id = 0;
     netmc::v1::JobStatus status;
     std::atomic<bool> cancel{false};
@@ -94,7 +115,7 @@ class JobService {
     std::vector<Watcher> watchers;
   };
   struct Submission {
-    std::shared_ptr<management::Session> session;
+    std::shared_ptr<management::Peer> session;
     netmc::v1::Request request;
   };
 
@@ -113,7 +134,7 @@ class JobService {
   void reply(Job& job, netmc::v1::Response response);
   // Under mutex_: a new watcher of `job` gets its status and the iterations so far (and its end,
   // if it has ended); refused with a reason if the job has too many watchers already.
-  void start_watch(Job& job, const std::shared_ptr<management::Session>& session, std::uint64_t request_id);
+  void start_watch(Job& job, const std::shared_ptr<management::Peer>& session, std::uint64_t request_id);
   // Under mutex_: `job` has ended with `finished`: each watcher gets it and is let go.
   void end_watches(Job& job, const netmc::v1::JobFinished& finished);
 
@@ -136,8 +157,9 @@ class JobService {
   std::map<std::pair<bool, std::string>, AxisReaders> axis_readers_;
   eprosima::fastdds::dds::DataWriter* iteration_logs_;
 
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::condition_variable wake_;
+  ServiceTotals totals_;  // under mutex_ (jobs_by_state filled by totals())
   std::deque<std::shared_ptr<Job>> queue_;
   std::map<std::uint64_t, std::shared_ptr<Job>> jobs_;
   std::set<std::string> busy_axes_;

@@ -29,6 +29,9 @@ class LockstepDdsRunner {
            const std::atomic<bool>& cancel);
 
   std::string controller_description() const { return server_.controller_description(); }
+  std::size_t cycles() const { return server_.cycles(); }
+  // A live view of the cycles (the console); see sim::CycleListener.
+  void set_cycle_listener(std::shared_ptr<sim::CycleListener> listener) { server_.set_cycle_listener(std::move(listener)); }
 
  private:
   // Feedback of `cycle` in `iteration` from every axis, in axis order.

@@ -38,6 +38,9 @@ class RealtimeDdsRunner {
   void run(const std::function<void(const sim::IterationRecord&)>& on_iteration,
            const std::atomic<bool>& cancel);
   std::string controller_description() const { return server_.controller_description(); }
+  std::size_t cycles() const { return server_.cycles(); }
+  // A live view of the cycles (the console); see sim::CycleListener.
+  void set_cycle_listener(std::shared_ptr<sim::CycleListener> listener) { server_.set_cycle_listener(std::move(listener)); }
 
  private:
   // Takes feedback until `cycle`'s sample of every axis is in or `until` passes; samples of

@@ -50,6 +50,7 @@ control::AxisVector ContourServer::begin_iteration(std::size_t iteration) {
 
   record_ = IterationRecord{};
   record_.metrics.iteration = iteration;
+  latest_tau_s_ = -1.0;
   record_.metrics.estimate_names = controller_->estimate_names();
   last_estimates_ = {};
   for (auto* values : {&record_.metrics.tracking_rms_m, &record_.metrics.tracking_max_m,
@@ -154,12 +155,13 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
     ++steady_samples_;
     m.e_max_steady_m = std::max(m.e_max_steady_m, std::abs(contour_error));
   }
-  reference_min_ = reference_min_.cwiseMin(reference.position);
-  reference_max_ = reference_max_.cwiseMax(reference.position);
-  position_min_ = position_min_.cwiseMin(true_position_);
-  position_max_ = position_max_.cwiseMax(true_position_);
   for (std::size_t axis = 0; axis < uplinks_.size(); ++axis) {
     const auto i = static_cast<Eigen::Index>(axis);
+    // Where the reference and the axis went (did it follow?), as scalars: cheaper per cycle.
+    reference_min_[i] = std::min(reference_min_[i], reference.position[i]);
+    reference_max_[i] = std::max(reference_max_[i], reference.position[i]);
+    position_min_[i] = std::min(position_min_[i], true_position_[i]);
+    position_max_[i] = std::max(position_max_[i], true_position_[i]);
     const double tracking = reference.position[i] - true_position_[i];
     tracking_squares_[axis] += tracking * tracking;
     m.tracking_max_m[axis] = std::max(m.tracking_max_m[axis], std::abs(tracking));
@@ -182,6 +184,18 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
     row.coupling_command = step.coupling_command;
     if (!record_.metrics.estimate_names.empty()) row.estimates = step.estimates;
   }
+  if (listener_) {
+    LiveCycle live;
+    live.iteration = record_.metrics.iteration;
+    live.cycle = cycle;
+    live.time_s = t;
+    live.reference_m = reference.position;
+    live.position_m = true_position_;
+    live.contour_error_m = contour_error;
+    live.command = step.command;
+    live.latest_tau_s = latest_tau_s_;
+    listener_->on_cycle(live);
+  }
   return out;
 }
 
@@ -195,6 +209,7 @@ void ContourServer::record_applied(std::size_t axis, const std::vector<AppliedSe
         a.arrival_time_s - static_cast<double>(a.sequence) * job_.sample_period_s;
     tau_.push_back(loop_delay);
     tau_ca_.push_back(a.arrival_time_s - a.send_time_s);
+    if (axis == 0) latest_tau_s_ = loop_delay;
     if (job_.record_traces && axis == 0 && a.sequence < record_.trace.size()) {
       record_.trace[a.sequence].tau_s = loop_delay;
     }

@@ -6,12 +6,14 @@
 
 #include <Eigen/Dense>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "control/contour_group.hpp"
 #include "netsim/delayed_channel.hpp"
 #include "server/sim/axis_endpoint.hpp"
 #include "server/sim/contour_job.hpp"
+#include "server/sim/cycle_listener.hpp"
 #include "server/sim/iteration_metrics.hpp"
 
 namespace netmc::sim {
@@ -43,6 +45,10 @@ class ContourServer {
   void record_applied(std::size_t axis, const std::vector<AppliedSetpoint>& applied);
   // Closes the iteration; `lost` and `stale` are the axes' downlink counters.
   IterationRecord end_iteration(std::uint64_t lost_setpoints, std::uint64_t stale_setpoints);
+
+  // A live view of the cycles (netmc-server's console); none by default. It changes nothing the
+  // loop computes: lockstep and in-process results stay the same with or without one.
+  void set_cycle_listener(std::shared_ptr<CycleListener> listener) { listener_ = std::move(listener); }
 
   std::string controller_description() const { return controller_->describe(); }
   std::size_t cycles() const { return cycles_; }
@@ -78,6 +84,8 @@ class ContourServer {
   double compute_time_ = 0.0;
   std::size_t samples_ = 0;
   std::array<double, control::kMaxControllerEstimates> last_estimates_{};
+  std::shared_ptr<CycleListener> listener_;
+  double latest_tau_s_ = -1.0;  // axis 0's, for the listener
 };
 
 }  // namespace netmc::sim
