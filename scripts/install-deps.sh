@@ -16,12 +16,15 @@ build=(build-essential cmake ninja-build pkg-config dpkg-dev file
   libmodbus-dev libzip-dev libtinyxml2-dev)
 # What the tests and benchmarks use besides: gnuplot for figures, namespaces and nftables for
 # test hosts, rt-tests for the machine's latency, openssl for DDS Security certificates, systemd
-# for checking the units, and podman with compose for the container test.
+# for checking the units, podman with compose for the container test, and for the console: Debian's
+# dygraphs (the page's plots), a headless browser driven by selenium, a WebSocket client and
+# promtool (prometheus) for /metrics.
 tests=(gnuplot-nox
   iproute2 nftables util-linux fastdds-tools rt-tests openssl systemd
   podman podman-compose runc debootstrap golang-github-containernetworking-plugin-dnsname dnsmasq-base
   docker-compose uidmap
-  libgtest-dev libgmock-dev libbenchmark-dev)
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libjs-dygraphs chromium chromium-driver python3-selenium python3-websocket prometheus curl)
 apt-get update
 if [ "${1:-}" = "--build-only" ]; then
   apt-get install -y --no-install-recommends "${build[@]}"

@@ -9,10 +9,10 @@ ctest --test-dir build --output-on-failure --parallel "$(nproc)" --timeout 600
 
 # The unit tests of the code that takes hostile input (pure libraries, job specs, the management
 # endpoint, the fuzz budget, the drives: map files, Modbus frames, plugins; FMU archives and their
-# descriptions; component plugins) once more under
+# descriptions; component plugins; the console's Prometheus text and live feed) once more under
 # AddressSanitizer and UndefinedBehaviorSanitizer.
 sanitized=(netsim_tests plant_tests control_tests sim_tests management_tests hostile_input_fuzz_tests drive_tests
-  modbus_drive_tests plugin_drive_tests fmu_plant_tests component_plugin_tests)
+  modbus_drive_tests plugin_drive_tests fmu_plant_tests component_plugin_tests console_tests)
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -DNETMC_SANITIZE=ON \
   -DNETMC_WERROR=ON -DNETMC_BUILD_BENCHMARKS=OFF
 cmake --build build-sanitize --parallel "$(nproc)" --target "${sanitized[@]}"

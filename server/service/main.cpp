@@ -13,6 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "client/presets.hpp"
+#include "server/console/console_service.hpp"
+#include "server/console/http_console.hpp"
 #include "server/dds/dds_options_cli.hpp"
 #include "server/log/process_log.hpp"
 #include "server/management/access_token.hpp"
@@ -94,6 +97,12 @@ int main(int argc, char** argv) {
                  "A controller plugin (shared object) jobs may name as --controller plugin:PATH[:...], by this "
                  "exact path; loaded and checked at start. Repeatable; default: none (a job naming a plugin is "
                  "refused: a client cannot make the server load code)");
+  std::string http_listen;
+  app.add_option("--http", http_listen,
+                 "Serve the lab console and /metrics on HOST:PORT (:PORT: 127.0.0.1; port 0: any free port), with "
+                 "--tls-cert's certificate if given; read-only without --token-file's or --admin-token-file's token "
+                 "(docs/operations/console.md); default: off")
+      ->envname("NETMC_HTTP");
   netmc::dds::add_time_base_option(app, time_base);
   netmc::dds::add_dds_options(app, dds);
   netmc::realtime::RealtimeScheduling scheduling;
@@ -109,6 +118,8 @@ int main(int argc, char** argv) {
   }
   std::string listen_address;
   std::uint16_t port = 0;
+  std::string http_address;  // empty: no console
+  std::uint16_t http_port = 0;
   try {
     // A host name (localhost, the lab host's name) binds to the address it resolves to.
     const auto where = netmc::management::parse_host_port(listen, "--listen", true);
@@ -121,6 +132,17 @@ int main(int argc, char** argv) {
                                   (error ? ": " + error.message() : std::string()));
     }
     listen_address = found.begin()->endpoint().address().to_string();
+    if (!http_listen.empty()) {
+      if (http_listen.front() == ':') http_listen = "127.0.0.1" + http_listen;
+      const auto http_where = netmc::management::parse_host_port(http_listen, "--http", true);
+      const auto http_found = boost::asio::ip::tcp::resolver(resolving).resolve(http_where.host, http_where.port, error);
+      if (error || http_found.empty()) {
+        throw std::invalid_argument("--http: cannot resolve '" + http_where.host + "'" +
+                                    (error ? ": " + error.message() : std::string()));
+      }
+      http_address = http_found.begin()->endpoint().address().to_string();
+      http_port = static_cast<std::uint16_t>(std::stoi(http_where.port));
+    }
   } catch (const std::invalid_argument& e) {
     std::cerr << "netmc-server: error: " << e.what() << "\n";
     return 2;
@@ -164,6 +186,14 @@ int main(int argc, char** argv) {
       }
     }
     options.allowed_plugins = allowed_plugins;
+    // The console outlives the job service (declared first): a job thread that starts while the
+    // service shuts down may still ask it for a live feed.
+    std::unique_ptr<netmc::console::ConsoleService> console;
+    if (!http_address.empty()) {
+      options.live_cycles = [&console](std::uint64_t job_id) -> std::shared_ptr<netmc::sim::CycleListener> {
+        return console ? console->live_cycles(job_id) : nullptr;
+      };
+    }
     netmc::service::JobService jobs(context, nodes, clocks, options);
     limits.max_connections = static_cast<std::size_t>(max_connections);
     limits.session.idle_timeout = std::chrono::seconds(idle_timeout_s);
@@ -186,9 +216,34 @@ int main(int argc, char** argv) {
         limits, tls, [](const std::string& peer, const std::string& reason) {
           spdlog::warn("management connection from {} closed: TLS handshake failed: {}", peer, reason);
         });
+    std::unique_ptr<netmc::console::HttpConsole> http;
+    if (!http_address.empty()) {
+      netmc::console::ConsoleOptions console_options;
+      console_options.version = NETMC_VERSION;
+      console_options.token_required = token.has_value() || admin_token.has_value();
+      if (console_options.token_required) {
+        console_options.authorize = [&token, &admin_token](const std::string& presented) -> std::optional<bool> {
+          if (admin_token && admin_token->accepts(presented)) return true;
+          if (token && token->accepts(presented)) return false;
+          return std::nullopt;
+        };
+      }
+      console_options.presets = netmc::cli::preset_names();
+      console_options.preset_job = [](const std::string& name) { return netmc::cli::make_preset(name).jobs.front(); };
+      console_options.management_connections = [&server] { return server.open_connections(); };
+      console = std::make_unique<netmc::console::ConsoleService>(io, jobs, std::move(console_options));
+      // A browser shows no client certificate: the console's TLS asks for none.
+      const auto console_tls = tls_cert.empty() ? nullptr : netmc::management::make_server_tls(tls_cert, tls_key, "");
+      http = std::make_unique<netmc::console::HttpConsole>(io, *console, http_address, http_port, console_tls);
+      spdlog::info("console on {}://{}:{}/ ({})", console_tls ? "https" : "http", http_address, http->port(),
+                   token || admin_token ? "starting and cancelling jobs need the token"
+                                        : "no token: anyone who reaches it may start and cancel jobs");
+    }
     boost::asio::signal_set signals(io, SIGINT, SIGTERM);
     signals.async_wait([&](const boost::system::error_code&, int) {
       server.stop();
+      if (http) http->stop();
+      if (console) console->stop();
       io.stop();
     });
     spdlog::info("netmc {}, listening on {}:{} ({}), DDS domain {} ({}), server {}, time base {}, {}", NETMC_VERSION,

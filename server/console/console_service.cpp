@@ -1,0 +1,520 @@
+#include "server/console/console_service.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <charconv>
+#include <cmath>
+#include <string_view>
+
+#include "server/console/prometheus_text.hpp"
+#include "server/job/job_builder.hpp"
+
+namespace netmc::console {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::size_t kMaxQueuedResponses = 4096;
+constexpr std::chrono::seconds kSubmitTimeout{15};
+
+json proto_json(const google::protobuf::Message& message) { return json::parse(job::to_json(message)); }
+
+HttpAnswer json_answer(unsigned status, const json& body) {
+  return HttpAnswer{status, "application/json", body.dump()};
+}
+
+HttpAnswer error_answer(unsigned status, const std::string& message) {
+  return json_answer(status, json{{"error", message}});
+}
+
+// "123" -> 123; anything else (signs, spaces, 20+ digits) -> nullopt.
+std::optional<std::uint64_t> parse_id(std::string_view text) {
+  if (text.empty() || text.size() > 19) return std::nullopt;
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || value == 0) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+// The console's end of its conversation with the job service: responses queue here (from any
+// thread) until the console's thread takes them; the oldest go first past the bound.
+class ConsoleService::Peer final : public management::Peer {
+ public:
+  void send(const netmc::v1::Response& response) override {
+    std::lock_guard lock(mutex_);
+    if (queue_.size() >= kMaxQueuedResponses) queue_.pop_front();
+    queue_.push_back(response);
+  }
+  bool open() const override { return open_.load(std::memory_order_acquire); }
+  void hold() override {}
+  void release() override {}
+
+  std::deque<netmc::v1::Response> take() {
+    std::lock_guard lock(mutex_);
+    return std::exchange(queue_, {});
+  }
+  void close() { open_.store(false, std::memory_order_release); }
+
+ private:
+  std::mutex mutex_;
+  std::deque<netmc::v1::Response> queue_;
+  std::atomic<bool> open_{true};
+};
+
+ConsoleService::ConsoleService(boost::asio::io_context& io, service::JobService& jobs, ConsoleOptions options)
+    : io_(io),
+      jobs_(jobs),
+      options_(std::move(options)),
+      peer_(std::make_shared<Peer>()),
+      state_timer_(io),
+      live_timer_(io) {
+  schedule_state();
+  schedule_live();
+}
+
+ConsoleService::~ConsoleService() { stop(); }
+
+void ConsoleService::stop() {
+  if (stopped_) return;
+  stopped_ = true;
+  state_timer_.cancel();
+  live_timer_.cancel();
+  peer_->close();
+  subscribers_.clear();
+}
+
+std::shared_ptr<sim::CycleListener> ConsoleService::live_cycles(std::uint64_t job_id) {
+  auto feed = std::make_shared<LiveFeed>();
+  std::lock_guard lock(feeds_mutex_);
+  if (stopped_) return nullptr;
+  feeds_[job_id] = feed;
+  return feed;
+}
+
+std::uint64_t ConsoleService::subscribe(Subscriber subscriber) {
+  const std::uint64_t id = next_subscriber_++;
+  subscribers_.emplace(id, std::move(subscriber));
+  return id;
+}
+
+void ConsoleService::unsubscribe(std::uint64_t id) { subscribers_.erase(id); }
+
+std::string ConsoleService::hello() const {
+  return json{{"type", "hello"}, {"version", options_.version}, {"token_required", options_.token_required}}.dump();
+}
+
+void ConsoleService::broadcast(std::string message) {
+  const auto shared = std::make_shared<const std::string>(std::move(message));
+  // A subscriber may unsubscribe itself while it is told (its socket failed).
+  const auto subscribers = subscribers_;
+  for (const auto& [id, subscriber] : subscribers) subscriber(shared);
+}
+
+netmc::v1::Response ConsoleService::ask(netmc::v1::Request request, bool admin) {
+  const std::uint64_t id = next_request_++;
+  request.set_request_id(id);
+  jobs_.handle(peer_, request, admin);
+  // Status, nodes and cancel are answered within handle(); anything else taken is dispatched.
+  std::optional<netmc::v1::Response> mine;
+  auto responses = peer_->take();
+  std::deque<netmc::v1::Response> others;
+  for (auto& response : responses) {
+    if (!mine && response.request_id() == id) mine = std::move(response);
+    else others.push_back(std::move(response));
+  }
+  for (const auto& response : others) peer_->send(response);  // back, in order, for take_responses
+  if (!mine) {
+    netmc::v1::Response none;
+    none.set_request_id(id);
+    none.mutable_error()->set_message("the job service did not answer");
+    return none;
+  }
+  return *mine;
+}
+
+void ConsoleService::take_responses() {
+  for (const auto& response : peer_->take()) {
+    const std::uint64_t id = response.request_id();
+    if (const auto pending = pending_submits_.find(id); pending != pending_submits_.end()) {
+      if (response.has_accepted()) {
+        pending->second(json_answer(202, json{{"job", response.accepted().job_id()}}));
+      } else if (response.has_error()) {
+        pending->second(error_answer(400, response.error().message()));
+      } else {
+        continue;  // a later update of the job it submitted: the watch shows those
+      }
+      pending_submits_.erase(pending);
+      continue;
+    }
+    const auto watch = watches_.find(id);
+    if (watch == watches_.end()) continue;
+    const std::uint64_t job_id = watch->second;
+    JobView& view = views_[job_id];
+    if (response.has_status() && response.status().jobs_size() > 0) {
+      view.status = response.status().jobs(0);
+    } else if (response.has_iteration()) {
+      const auto& metrics = response.iteration().metrics();
+      const bool known = std::any_of(view.iterations.begin(), view.iterations.end(), [&](const auto& m) {
+        return m.iteration() == metrics.iteration();
+      });
+      if (!known) {
+        view.iterations.push_back(metrics);
+        broadcast(json{{"type", "iteration"}, {"job", job_id}, {"metrics", proto_json(metrics)}}.dump());
+      }
+    } else if (response.has_finished()) {
+      view.finished = response.finished();
+      view.status.set_state(response.finished().state());
+      view.status.set_error(response.finished().error());
+      for (const auto& metrics : response.finished().result().iterations()) {
+        const bool known = std::any_of(view.iterations.begin(), view.iterations.end(), [&](const auto& m) {
+          return m.iteration() == metrics.iteration();
+        });
+        if (!known) view.iterations.push_back(metrics);
+      }
+      broadcast(json{{"type", "finished"}, {"job", job_id}, {"finished", proto_json(response.finished())}}.dump());
+      watches_.erase(watch);
+    } else if (response.has_error()) {
+      watches_.erase(watch);  // the job is gone; the next state tick forgets it
+    }
+  }
+}
+
+void ConsoleService::schedule_state() {
+  state_timer_.expires_after(options_.state_period);
+  state_timer_.async_wait([this](const boost::system::error_code& error) {
+    if (error || stopped_) return;
+    tick_state();
+    schedule_state();
+  });
+}
+
+void ConsoleService::schedule_live() {
+  live_timer_.expires_after(options_.live_period);
+  live_timer_.async_wait([this](const boost::system::error_code& error) {
+    if (error || stopped_) return;
+    tick_live();
+    schedule_live();
+  });
+}
+
+void ConsoleService::tick_state() {
+  take_responses();
+  netmc::v1::Request nodes;
+  nodes.mutable_nodes();
+  if (const auto answer = ask(nodes); answer.has_nodes()) nodes_ = answer.nodes();
+  netmc::v1::Request status;
+  status.mutable_status();
+  const auto answer = ask(status);
+  std::map<std::uint64_t, JobView> seen;
+  for (const auto& job : answer.status().jobs()) {
+    JobView view;
+    if (const auto it = views_.find(job.job_id()); it != views_.end()) view = std::move(it->second);
+    if (!view.finished) view.status = job;
+    seen.emplace(job.job_id(), std::move(view));
+  }
+  views_ = std::move(seen);
+  // Every job that may still run is watched, so its iterations reach the page as they end.
+  for (auto& [id, view] : views_) {
+    const std::string& state = view.status.state();
+    if (view.watch_request != 0 || view.finished || (state != "queued" && state != "running")) continue;
+    netmc::v1::Request watch;
+    view.watch_request = next_request_++;
+    watch.set_request_id(view.watch_request);
+    watch.mutable_watch()->set_job_id(id);
+    watches_[view.watch_request] = id;
+    jobs_.handle(peer_, watch);
+  }
+  take_responses();
+  json message{{"type", "state"}, {"nodes", json::array()}, {"jobs", json::array()}};
+  for (const auto& node : nodes_.nodes()) message["nodes"].push_back(proto_json(node));
+  for (const auto& [id, view] : views_) message["jobs"].push_back(proto_json(view.status));
+  broadcast(message.dump());
+}
+
+void ConsoleService::tick_live() {
+  take_responses();
+  std::map<std::uint64_t, std::shared_ptr<LiveFeed>> feeds;
+  {
+    std::lock_guard lock(feeds_mutex_);
+    feeds = feeds_;
+  }
+  for (const auto& [job_id, feed] : feeds) {
+    auto taken = feed->take();
+    dropped_samples_ += taken.dropped;
+    const auto view = views_.find(job_id);
+    const bool ended = view != views_.end() && view->second.finished.has_value();
+    if (taken.cycles.empty() && taken.dropped == 0) {
+      if (ended) {
+        std::lock_guard lock(feeds_mutex_);
+        feeds_.erase(job_id);
+      }
+      continue;
+    }
+    const auto shown = decimate(taken.cycles, options_.samples_per_message);
+    json samples = json::array();
+    for (const auto& cycle : shown) {
+      const auto pair = [](const control::AxisVector& v) {
+        json out = json::array();
+        for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(std::isfinite(v[i]) ? json(v[i]) : json());
+        return out;
+      };
+      samples.push_back(json{{"t", cycle.time_s},
+                             {"ref", pair(cycle.reference_m)},
+                             {"pos", pair(cycle.position_m)},
+                             {"e", std::isfinite(cycle.contour_error_m) ? json(cycle.contour_error_m) : json()},
+                             {"u", pair(cycle.command)},
+                             {"tau", cycle.latest_tau_s}});
+    }
+    const std::size_t iteration = shown.empty() ? 0 : shown.back().iteration;
+    broadcast(json{{"type", "cycles"},
+                   {"job", job_id},
+                   {"iteration", iteration},
+                   {"dropped", taken.dropped},
+                   {"samples", std::move(samples)}}
+                  .dump());
+  }
+}
+
+std::optional<bool> ConsoleService::authorized(const HttpRequest& request) const {
+  if (!options_.authorize) return false;
+  constexpr std::string_view kBearer = "Bearer ";
+  if (request.authorization.rfind(kBearer, 0) != 0) return std::nullopt;
+  return options_.authorize(request.authorization.substr(kBearer.size()));
+}
+
+HttpAnswer ConsoleService::state_answer() {
+  netmc::v1::Request nodes;
+  nodes.mutable_nodes();
+  if (const auto answer = ask(nodes); answer.has_nodes()) nodes_ = answer.nodes();
+  netmc::v1::Request status;
+  status.mutable_status();
+  const auto answer = ask(status);
+  json body{{"version", options_.version},
+            {"token_required", options_.token_required},
+            {"nodes", json::array()},
+            {"jobs", json::array()}};
+  for (const auto& node : nodes_.nodes()) body["nodes"].push_back(proto_json(node));
+  for (const auto& job : answer.status().jobs()) body["jobs"].push_back(proto_json(job));
+  return json_answer(200, body);
+}
+
+HttpAnswer ConsoleService::job_answer(std::uint64_t job_id) {
+  take_responses();
+  json body;
+  const auto view = views_.find(job_id);
+  if (view == views_.end()) {
+    netmc::v1::Request status;
+    status.mutable_status()->set_job_id(job_id);
+    const auto answer = ask(status);
+    if (answer.status().jobs_size() == 0) return error_answer(404, "no job " + std::to_string(job_id));
+    body["status"] = proto_json(answer.status().jobs(0));
+    body["iterations"] = json::array();
+    return json_answer(200, body);
+  }
+  body["status"] = proto_json(view->second.status);
+  body["iterations"] = json::array();
+  auto iterations = view->second.iterations;
+  std::sort(iterations.begin(), iterations.end(),
+            [](const auto& a, const auto& b) { return a.iteration() < b.iteration(); });
+  for (const auto& metrics : iterations) body["iterations"].push_back(proto_json(metrics));
+  if (view->second.finished) {
+    // The iterations are above; the rest of the end as the protocol has it.
+    auto finished = *view->second.finished;
+    finished.mutable_result()->clear_iterations();
+    body["finished"] = proto_json(finished);
+  }
+  return json_answer(200, body);
+}
+
+void ConsoleService::submit(const HttpRequest& request, bool admin, std::function<void(HttpAnswer)> answer) {
+  const json body = json::parse(request.body, nullptr, false);
+  if (body.is_discarded() || !body.is_object()) {
+    answer(error_answer(400, "body: expected a JSON object {\"preset\": NAME, ...}"));
+    return;
+  }
+  for (const auto& [key, value] : body.items()) {
+    if (key != "preset" && key != "controller" && key != "iterations" && key != "clock") {
+      answer(error_answer(400, "body: unknown field '" + key.substr(0, 40) +
+                                   "' (expected preset, controller, iterations, clock)"));
+      return;
+    }
+  }
+  const auto preset = body.find("preset");
+  if (preset == body.end() || !preset->is_string() ||
+      std::find(options_.presets.begin(), options_.presets.end(), preset->get<std::string>()) ==
+          options_.presets.end()) {
+    answer(error_answer(400, "preset: expected one of the names GET /api/presets lists"));
+    return;
+  }
+  netmc::v1::JobSpec spec;
+  try {
+    spec = options_.preset_job(preset->get<std::string>());
+  } catch (const std::exception& error) {
+    answer(error_answer(400, std::string("preset: ") + error.what()));
+    return;
+  }
+  if (const auto controller = body.find("controller"); controller != body.end()) {
+    if (!controller->is_string() || controller->get<std::string>().empty() ||
+        controller->get<std::string>().size() > 200) {
+      answer(error_answer(400, "controller: expected a controller name (netmc sim --list-controllers)"));
+      return;
+    }
+    spec.mutable_controller()->set_name(controller->get<std::string>());
+  }
+  if (const auto iterations = body.find("iterations"); iterations != body.end()) {
+    if (!iterations->is_number_integer() || iterations->get<std::int64_t>() < 1 ||
+        iterations->get<std::int64_t>() > 10000) {
+      answer(error_answer(400, "iterations: expected a whole number in [1, 10000]"));
+      return;
+    }
+    spec.set_iterations(static_cast<std::uint32_t>(iterations->get<std::int64_t>()));
+  }
+  if (const auto clock = body.find("clock"); clock != body.end()) {
+    if (!clock->is_string() || (clock->get<std::string>() != "realtime" && clock->get<std::string>() != "lockstep")) {
+      answer(error_answer(400, "clock: expected realtime or lockstep"));
+      return;
+    }
+    spec.set_clock(clock->get<std::string>());
+  }
+  netmc::v1::Request submit;
+  const std::uint64_t id = next_request_++;
+  submit.set_request_id(id);
+  *submit.mutable_submit()->mutable_spec() = spec;
+  submit.mutable_submit()->set_keep_after_disconnect(true);
+  pending_submits_[id] = std::move(answer);
+  jobs_.handle(peer_, submit, admin);
+  // The verdict comes from the job service's validation thread; a timer makes sure it is given.
+  auto timer = std::make_shared<boost::asio::steady_timer>(io_, kSubmitTimeout);
+  timer->async_wait([this, id, timer](const boost::system::error_code& error) {
+    if (error || stopped_) return;
+    take_responses();
+    if (const auto pending = pending_submits_.find(id); pending != pending_submits_.end()) {
+      pending->second(error_answer(504, "the job service gave no verdict on the job in time"));
+      pending_submits_.erase(pending);
+    }
+  });
+}
+
+HttpAnswer ConsoleService::cancel(std::uint64_t job_id, bool admin) {
+  netmc::v1::Request request;
+  request.mutable_cancel()->set_job_id(job_id);
+  const auto answer = ask(request, admin);
+  if (answer.has_error()) {
+    const bool missing = answer.error().message().rfind("cancel: no job", 0) == 0;
+    return error_answer(missing ? 404 : 403, answer.error().message());
+  }
+  return json_answer(200, json{{"job", job_id}});
+}
+
+void ConsoleService::handle(const HttpRequest& request, std::function<void(HttpAnswer)> answer) {
+  const std::string_view target = request.target;
+  const bool get = request.method == "GET" || request.method == "HEAD";
+  const bool post = request.method == "POST";
+  const auto only = [&](bool allowed) {
+    if (!allowed) answer(error_answer(405, "method " + request.method.substr(0, 16) + " not allowed here"));
+    return allowed;
+  };
+  if (target == "/metrics") {
+    if (!only(get)) return;
+    answer(HttpAnswer{200, std::string(kPrometheusContentType), metrics_page()});
+    return;
+  }
+  if (target == "/api/state") {
+    if (only(get)) answer(state_answer());
+    return;
+  }
+  if (target == "/api/presets") {
+    if (only(get)) answer(json_answer(200, json{{"presets", options_.presets}}));
+    return;
+  }
+  if (target == "/api/jobs") {
+    if (!only(post)) return;
+    const auto admin = authorized(request);
+    if (!admin) {
+      answer(error_answer(401, "starting a job needs the server's token (Authorization: Bearer TOKEN)"));
+      return;
+    }
+    submit(request, *admin, std::move(answer));
+    return;
+  }
+  constexpr std::string_view kJobs = "/api/jobs/";
+  if (target.rfind(kJobs, 0) == 0) {
+    std::string_view rest = target.substr(kJobs.size());
+    constexpr std::string_view kCancel = "/cancel";
+    const bool cancelling = rest.size() > kCancel.size() && rest.ends_with(kCancel);
+    if (cancelling) rest.remove_suffix(kCancel.size());
+    const auto id = parse_id(rest);
+    if (!id) {
+      answer(error_answer(404, "no such route"));
+      return;
+    }
+    if (!cancelling) {
+      if (only(get)) answer(job_answer(*id));
+      return;
+    }
+    if (!only(post)) return;
+    const auto admin = authorized(request);
+    if (!admin) {
+      answer(error_answer(401, "cancelling a job needs the server's token (Authorization: Bearer TOKEN)"));
+      return;
+    }
+    answer(cancel(*id, *admin));
+    return;
+  }
+  answer(error_answer(404, "no such route"));
+}
+
+std::string ConsoleService::metrics_page() {
+  const auto totals = jobs_.totals();
+  PrometheusPage page;
+  page.family("netmc_nodes_up", MetricType::gauge, "Axis nodes heard from within the expiry.");
+  page.sample(static_cast<double>(nodes_.nodes_size()));
+  page.family("netmc_node_up", MetricType::gauge, "1 for each axis node the server lists.");
+  for (const auto& node : nodes_.nodes()) page.sample({{"node", node.node()}}, 1.0);
+  page.family("netmc_axis_fault", MetricType::gauge, "1 if the axis's drive has a latched fault (netmc reset clears it).");
+  for (const auto& node : nodes_.nodes()) {
+    for (const auto& drive : node.drives()) {
+      page.sample({{"node", node.node()}, {"axis", drive.axis()}, {"state", drive.state()}},
+                  drive.fault_latched() ? 1.0 : 0.0);
+    }
+  }
+  page.family("netmc_jobs", MetricType::gauge, "Jobs the server holds, by state (ended ones while in its history).");
+  for (const char* state : {"queued", "running", "done", "failed", "cancelled"}) {
+    const auto it = totals.jobs_by_state.find(state);
+    page.sample({{"state", state}}, it == totals.jobs_by_state.end() ? 0.0 : static_cast<double>(it->second));
+  }
+  const auto counter = [&](const char* name, const char* help, std::uint64_t value) {
+    page.family(name, MetricType::counter, help);
+    page.sample(static_cast<double>(value));
+  };
+  counter("netmc_iterations_total", "Iterations ended since the server started.", totals.iterations);
+  counter("netmc_deadline_misses_total", "Cycles computed after their deadline.", totals.deadline_misses);
+  counter("netmc_feedback_lost_total", "Feedback samples lost on the uplink.", totals.lost_feedback);
+  counter("netmc_setpoints_lost_total", "Setpoints lost on the downlink.", totals.lost_setpoints);
+  counter("netmc_forged_samples_dropped_total",
+          "Feedback or axis events dropped: from participants that do not host the axis.", totals.forged_samples);
+  page.family("netmc_loop_delay_seconds", MetricType::summary,
+              "Loop delay tau (feedback sampled to setpoint applied): quantiles of the latest iteration.");
+  page.sample({{"quantile", "0.5"}}, totals.tau_p50_s);
+  page.sample({{"quantile", "0.99"}}, totals.tau_p99_s);
+  page.sample({{"quantile", "1"}}, totals.tau_max_s);
+  page.sample({}, totals.tau_sum_s, "_sum");
+  page.sample({}, static_cast<double>(totals.tau_count), "_count");
+  if (options_.management_connections) {
+    page.family("netmc_management_connections", MetricType::gauge, "Open management connections.");
+    page.sample(static_cast<double>(options_.management_connections()));
+  }
+  page.family("netmc_console_connections", MetricType::gauge, "Open console connections (HTTP and WebSocket).");
+  page.sample(static_cast<double>(console_connections_));
+  counter("netmc_console_messages_dropped_total", "Live messages dropped for browsers that read too slowly.",
+          dropped_messages_);
+  counter("netmc_console_samples_dropped_total", "Cycles the live feed let go (its reader behind, or busy).",
+          dropped_samples_);
+  return page.text();
+}
+
+}  // namespace netmc::console

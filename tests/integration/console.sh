@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# netmc-server's console without a browser (docs/operations/console.md): a realtime job on two
+# axis nodes started through POST /api/jobs with the token (refused without); /metrics during the
+# job shows it running and both nodes up and passes promtool check metrics, and after it the
+# counters moved; GET /api/jobs/ID gives the same iterations as netmc watch --json; then the
+# hostile checks (console_hostile.py) with a job running.
+# Usage: console.sh BUILD_DIR
+set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
+build=$1
+source "$(dirname "$0")/lib.sh"
+netmc=$build/client/netmc
+
+printf 'console-token-%s\n' "$RANDOM$RANDOM$RANDOM" >"$tmp/token"
+chmod 600 "$tmp/token"
+for axis in x y; do
+  # A generous command limit: a loaded machine (the browser test beside) delays cycles by tens of ms.
+  start "$axis" "$build/server/axis/netmc-axis" --node con-$axis --axes $axis --clock realtime --domain "$domain" \
+    --command-limit 10 --position-window -1:1 --velocity-limit 10 \
+    --transport udp
+done
+start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --http :0 --domain "$domain" --transport udp \
+  --token-file "$tmp/token"
+port=$(server_port 127.0.0.1)
+http=$(sed -n 's|.*console on http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$tmp/server.log")
+url=http://127.0.0.1:$http
+token=$(cat "$tmp/token")
+server_pid=${pids[-1]}
+
+for _ in $(seq 100); do
+  [[ $(curl -s "$url/api/state" | python3 -c 'import json,sys; print(len(json.load(sys.stdin)["nodes"]))') == 2 ]] && break
+  sleep 0.1
+done
+job='{"preset":"seed001","controller":"adrc","iterations":3,"clock":"realtime"}'
+code=$(curl -s -o "$tmp/refused.json" -w '%{http_code}' -X POST -d "$job" "$url/api/jobs")
+[[ $code == 401 ]] || { echo "FAIL: a job without the token answered $code"; exit 1; }
+curl -s -f -X POST -H "Authorization: Bearer $token" -d "$job" "$url/api/jobs" >"$tmp/accepted.json"
+id=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["job"])' "$tmp/accepted.json")
+echo "POST /api/jobs: refused without the token (401), job $id started with it"
+
+# During the job.
+for _ in $(seq 100); do
+  curl -s "$url/metrics" >"$tmp/during.txt"
+  grep -q '^netmc_jobs{state="running"} 1$' "$tmp/during.txt" && break
+  sleep 0.1
+done
+grep -q '^netmc_jobs{state="running"} 1$' "$tmp/during.txt" || { echo "FAIL: /metrics does not show the job running"; cat "$tmp/during.txt"; exit 1; }
+grep -q '^netmc_nodes_up 2$' "$tmp/during.txt" || { echo "FAIL: /metrics does not show both nodes up"; exit 1; }
+promtool check metrics <"$tmp/during.txt"
+echo "/metrics during the job: netmc_jobs{state=\"running\"} 1, netmc_nodes_up 2; promtool check metrics: no complaint"
+
+NETMC_TOKEN_FILE=$tmp/token "$netmc" watch "$id" --server "127.0.0.1:$port" --json "$tmp/watch.json" >/dev/null
+curl -s -f "$url/metrics" >"$tmp/after.txt"
+promtool check metrics <"$tmp/after.txt"
+curl -s -f "$url/api/jobs/$id" >"$tmp/job.json"
+python3 - "$tmp/watch.json" "$tmp/job.json" "$tmp/after.txt" <<'PY'
+import json, sys
+watched = json.load(open(sys.argv[1]))["runs"][0]["iterations"]
+console = json.load(open(sys.argv[2]))
+assert console["status"]["state"] == "done", console["status"]
+shown = sorted(console["iterations"], key=lambda m: m["iteration"])
+assert len(shown) == len(watched) == 3, (len(shown), len(watched))
+for w, c in zip(watched, shown):
+    for key in ("e_max_m", "e_rms_m", "e_sum_m", "deadline_misses", "tau_p99_s"):
+        assert float(w[key]) == float(c[key]), (key, w[key], c[key])
+metrics = dict(line.rsplit(" ", 1) for line in open(sys.argv[3]) if line and not line.startswith("#"))
+assert float(metrics["netmc_iterations_total"]) == 3, metrics["netmc_iterations_total"]
+assert float(metrics['netmc_jobs{state="done"}']) == 1
+assert float(metrics["netmc_loop_delay_seconds_count"]) > 0
+assert float(metrics['netmc_loop_delay_seconds{quantile="0.99"}']) > 0
+print(f"GET /api/jobs/ID = netmc watch --json for 3 iterations (e_max {shown[-1]['e_max_m'] * 1e6:.2f} um); "
+      f"after the job: netmc_iterations_total 3, netmc_jobs{{state=\"done\"}} 1, "
+      f"loop delay count {metrics['netmc_loop_delay_seconds_count']}")
+PY
+
+# The hostile checks with a job running, so the live feed has something to send.
+curl -s -f -X POST -H "Authorization: Bearer $token" -d "$job" "$url/api/jobs" >/dev/null
+/usr/bin/python3 "$(dirname "$0")/console_hostile.py" "$http" "$server_pid" --slow-reader-seconds 8
+grep -q 'job [0-9]* failed' "$tmp/server.log" && { echo "FAIL: a job failed during the hostile checks"; grep failed "$tmp/server.log"; exit 1; }
+echo "no job failed"
