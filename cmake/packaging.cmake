@@ -102,7 +102,7 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-# gnuplot draws `--plot` figures.
-set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "gnuplot-nox")
+# gnuplot draws `--plot` figures; dygraphs draws the console's plots (netmc-server --http).
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "gnuplot-nox, libjs-dygraphs")
 set(CPACK_STRIP_FILES ON)
 include(CPack)

@@ -4,8 +4,9 @@
 # `apt-get install ./netmc_*.deb`), then docker/compose.yaml brought up with podman-compose
 # (server, two axis nodes on a user-defined bridge, DDS discovering by multicast on it): `netmc
 # nodes` and a lockstep job from the compose file's client service, whose JSON equals `netmc sim`'s
-# on the host byte for byte; `netmc nodes` from the host through the published port; `docker-compose
-# config` accepts both compose files. Everything it made goes: containers, network, images, and
+# on the host byte for byte; `netmc nodes` and the console's /metrics from the host through the
+# published ports; the monitoring profile's Prometheus (Debian's package) scrapes the server;
+# `docker-compose config` accepts both compose files. Everything it made goes: containers, network, images, and
 # the container storage, which is its own (CONTAINERS_CONF and CONTAINERS_STORAGE_CONF point
 # into its scratch directory: the machine's podman settings are not touched).
 # Skips (77) with the reason where containers cannot run: not root, podman, podman-compose or
@@ -17,7 +18,7 @@ build=$(cd "$1" && pwd)
 source_dir=$(cd "$(dirname "$0")/../.." && pwd)
 skip() { echo "skipped: $*"; exit 77; }
 [ "$(id -u)" -eq 0 ] || skip "needs root (podman with its own storage, debootstrap)"
-for tool in podman podman-compose debootstrap docker-compose cpack; do
+for tool in podman podman-compose debootstrap docker-compose cpack curl promtool; do
   command -v "$tool" >/dev/null || skip "$tool is not installed (scripts/install-deps.sh installs it)"
 done
 
@@ -99,7 +100,11 @@ echo "the .deb installed on a clean Debian 12 runs netmc sim"
 
 # The lab: server and two axis nodes, then the client service.
 port=$(( 17300 + RANDOM % 1000 ))
+console_port=$(( port + 1000 ))
+prometheus_port=$(( port + 2000 ))
 export NETMC_IMAGE=localhost/netmc:test NETMC_PUBLISH=127.0.0.1:$port NETMC_DOMAIN=$(( RANDOM % 200 ))
+export NETMC_CONSOLE_PUBLISH=127.0.0.1:$console_port NETMC_PROMETHEUS_PUBLISH=127.0.0.1:$prometheus_port
+export NETMC_PROMETHEUS_IMAGE=localhost/netmc-prometheus:test
 compose() { podman-compose -p "$project" -f "$source_dir/docker/compose.yaml" "$@"; }
 compose up -d server axis-x axis-y >"$tmp/up.log" 2>&1 || { cat "$tmp/up.log"; exit 1; }
 up=$(date +%s)
@@ -114,6 +119,26 @@ grep '^node\|^axis-' "$tmp/nodes.txt"
 "$build/client/netmc" nodes --server "127.0.0.1:$port" | grep -q '^axis-x ' ||
   { echo "FAIL: the published management port does not answer from the host"; exit 1; }
 echo "netmc nodes from the client service and from the host (127.0.0.1:$port): axis-x and axis-y"
+curl -s -f "http://127.0.0.1:$console_port/metrics" >"$tmp/metrics.txt" ||
+  { echo "FAIL: the published console port does not answer from the host"; exit 1; }
+grep -q '^netmc_nodes_up 2$' "$tmp/metrics.txt" || { echo "FAIL: /metrics does not show both nodes"; cat "$tmp/metrics.txt"; exit 1; }
+promtool check metrics <"$tmp/metrics.txt"
+echo "console from the host (127.0.0.1:$console_port): /metrics shows netmc_nodes_up 2, promtool check metrics: no complaint"
+# The monitoring profile: Prometheus from Debian's package scraping the server in the lab network.
+promtool check config "$source_dir/docker/prometheus.yml" >/dev/null
+podman build --network host --build-arg BASE=localhost/netmc-test-base:12 -f "$source_dir/docker/Dockerfile.prometheus" \
+  -t localhost/netmc-prometheus:test "$source_dir/docker" >"$tmp/prometheus-build.log" 2>&1 ||
+  { cat "$tmp/prometheus-build.log"; exit 1; }
+compose up -d prometheus >"$tmp/prometheus-up.log" 2>&1 || { cat "$tmp/prometheus-up.log"; exit 1; }
+scraped=""
+for _ in $(seq 60); do
+  scraped=$(curl -s "http://127.0.0.1:$prometheus_port/api/v1/query?query=netmc_nodes_up" |
+    python3 -c 'import json,sys; r=json.load(sys.stdin)["data"]["result"]; print(r[0]["value"][1] if r else "")' 2>/dev/null || true)
+  [ "$scraped" = 2 ] && break
+  sleep 1
+done
+[ "$scraped" = 2 ] || { echo "FAIL: Prometheus did not scrape netmc_nodes_up 2 from the server"; podman logs "${project}_prometheus_1" | tail -20; exit 1; }
+echo "monitoring profile: Prometheus (Debian's package) scraped netmc_nodes_up = 2 from server:7380"
 study=(--controller adrc+ilccc --iterations 2)
 compose run --rm -T client netmc run --quiet "${study[@]}" --json - >"$tmp/run.out" 2>"$tmp/run.err" ||
   { cat "$tmp/run.out" "$tmp/run.err"; exit 1; }
