@@ -19,9 +19,7 @@
   const PLUS_MINUS = '\u00b1';
 
   const $ = (id) => document.getElementById(id);
-  // Two elements carry the id "iterations": the start form's number input and the table of
-  // ended iterations; each is found by its tag.
-  const iterationTableBody = () => document.querySelector('table#iterations').tBodies[0];
+  const iterationTableBody = () => $('iterations').tBodies[0];
 
   // ---------------------------------------------------------------- small helpers
 
@@ -282,7 +280,7 @@
     const payload = { preset: preset };
     const controller = $('controller').value.trim();
     if (controller) payload.controller = controller;
-    const iterationsText = document.querySelector('input#iterations').value.trim();
+    const iterationsText = document.getElementById('iteration-count').value.trim();
     if (iterationsText) {
       const iterations = Number(iterationsText);
       if (!Number.isInteger(iterations) || iterations < 1) {
