@@ -89,12 +89,15 @@ run_loss() {
     "load average $(cut -d' ' -f1-3 /proc/loadavg)"
 }
 
-# start_nodes CLOCK TAG: one axis node per host, waits until the server lists both.
+# start_nodes CLOCK TAG: one axis node per host, waits until the server lists both. A command
+# limit of 5 (the plant's rated input is 1): at 20 % loss ILC asks for up to twice the rated input
+# for a cycle, which a node with the default limit trips on (right for a real axis; this test
+# studies loss, and the job's own command limit still saturates the plant's input).
 start_nodes() {
   lab_start "x$2" ax -- "$axis_bin" --node "$2-x" --axes x --clock "$1" --domain "$domain" \
-    --transport udp --interface "$(lab_addr ax)"
+    --transport udp --interface "$(lab_addr ax)" --command-limit 5
   lab_start "y$2" ay -- "$axis_bin" --node "$2-y" --axes y --clock "$1" --domain "$domain" \
-    --transport udp --interface "$(lab_addr ay)"
+    --transport udp --interface "$(lab_addr ay)" --command-limit 5
   local n=0
   for _ in $(seq 100); do
     n=$(lab_exec srv -- "$netmc" nodes --server "$S:$port" | grep -cE "^$2-[xy] .*idle" || true)
