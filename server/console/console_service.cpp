@@ -72,8 +72,8 @@ ConsoleService::ConsoleService(boost::asio::io_context& io, service::JobService&
       peer_(std::make_shared<Peer>()),
       state_timer_(io),
       live_timer_(io) {
-  schedule_state();
-  schedule_live();
+  repeat(state_timer_, options_.state_period, &ConsoleService::tick_state);
+  repeat(live_timer_, options_.live_period, &ConsoleService::tick_live);
 }
 
 ConsoleService::~ConsoleService() { stop(); }
@@ -136,6 +136,13 @@ netmc::v1::Response ConsoleService::ask(netmc::v1::Request request, bool admin) 
   return *mine;
 }
 
+bool ConsoleService::add_iteration(JobView& view, const netmc::v1::IterationMetrics& metrics) {
+  const bool known = std::any_of(view.iterations.begin(), view.iterations.end(),
+                                 [&](const auto& m) { return m.iteration() == metrics.iteration(); });
+  if (!known) view.iterations.push_back(metrics);
+  return !known;
+}
+
 void ConsoleService::take_responses() {
   for (const auto& response : peer_->take()) {
     const std::uint64_t id = response.request_id();
@@ -158,23 +165,14 @@ void ConsoleService::take_responses() {
       view.status = response.status().jobs(0);
     } else if (response.has_iteration()) {
       const auto& metrics = response.iteration().metrics();
-      const bool known = std::any_of(view.iterations.begin(), view.iterations.end(), [&](const auto& m) {
-        return m.iteration() == metrics.iteration();
-      });
-      if (!known) {
-        view.iterations.push_back(metrics);
+      if (add_iteration(view, metrics)) {
         broadcast(json{{"type", "iteration"}, {"job", job_id}, {"metrics", proto_json(metrics)}}.dump());
       }
     } else if (response.has_finished()) {
       view.finished = response.finished();
       view.status.set_state(response.finished().state());
       view.status.set_error(response.finished().error());
-      for (const auto& metrics : response.finished().result().iterations()) {
-        const bool known = std::any_of(view.iterations.begin(), view.iterations.end(), [&](const auto& m) {
-          return m.iteration() == metrics.iteration();
-        });
-        if (!known) view.iterations.push_back(metrics);
-      }
+      for (const auto& metrics : response.finished().result().iterations()) add_iteration(view, metrics);
       broadcast(json{{"type", "finished"}, {"job", job_id}, {"finished", proto_json(response.finished())}}.dump());
       watches_.erase(watch);
     } else if (response.has_error()) {
@@ -183,34 +181,30 @@ void ConsoleService::take_responses() {
   }
 }
 
-void ConsoleService::schedule_state() {
-  state_timer_.expires_after(options_.state_period);
-  state_timer_.async_wait([this](const boost::system::error_code& error) {
+void ConsoleService::repeat(boost::asio::steady_timer& timer, std::chrono::milliseconds period,
+                            void (ConsoleService::*tick)()) {
+  timer.expires_after(period);
+  timer.async_wait([this, &timer, period, tick](const boost::system::error_code& error) {
     if (error || stopped_) return;
-    tick_state();
-    schedule_state();
+    (this->*tick)();
+    repeat(timer, period, tick);
   });
 }
 
-void ConsoleService::schedule_live() {
-  live_timer_.expires_after(options_.live_period);
-  live_timer_.async_wait([this](const boost::system::error_code& error) {
-    if (error || stopped_) return;
-    tick_live();
-    schedule_live();
-  });
-}
-
-void ConsoleService::tick_state() {
-  take_responses();
+netmc::v1::StatusReply ConsoleService::refresh_nodes_and_jobs() {
   netmc::v1::Request nodes;
   nodes.mutable_nodes();
   if (const auto answer = ask(nodes); answer.has_nodes()) nodes_ = answer.nodes();
   netmc::v1::Request status;
   status.mutable_status();
-  const auto answer = ask(status);
+  return ask(status).status();
+}
+
+void ConsoleService::tick_state() {
+  take_responses();
+  const auto jobs = refresh_nodes_and_jobs();
   std::map<std::uint64_t, JobView> seen;
-  for (const auto& job : answer.status().jobs()) {
+  for (const auto& job : jobs.jobs()) {
     JobView view;
     if (const auto it = views_.find(job.job_id()); it != views_.end()) view = std::move(it->second);
     if (!view.finished) view.status = job;
@@ -287,18 +281,13 @@ std::optional<bool> ConsoleService::authorized(const HttpRequest& request) const
 }
 
 HttpAnswer ConsoleService::state_answer() {
-  netmc::v1::Request nodes;
-  nodes.mutable_nodes();
-  if (const auto answer = ask(nodes); answer.has_nodes()) nodes_ = answer.nodes();
-  netmc::v1::Request status;
-  status.mutable_status();
-  const auto answer = ask(status);
+  const auto jobs = refresh_nodes_and_jobs();
   json body{{"version", options_.version},
             {"token_required", options_.token_required},
             {"nodes", json::array()},
             {"jobs", json::array()}};
   for (const auto& node : nodes_.nodes()) body["nodes"].push_back(proto_json(node));
-  for (const auto& job : answer.status().jobs()) body["jobs"].push_back(proto_json(job));
+  for (const auto& job : jobs.jobs()) body["jobs"].push_back(proto_json(job));
   return json_answer(200, body);
 }
 

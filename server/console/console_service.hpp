@@ -100,8 +100,12 @@ class ConsoleService {
 
   void tick_state();
   void tick_live();
-  void schedule_state();
-  void schedule_live();
+  // Calls `tick` every `period` on the io thread until stop().
+  void repeat(boost::asio::steady_timer& timer, std::chrono::milliseconds period, void (ConsoleService::*tick)());
+  // Asks the job service for the nodes (kept in nodes_) and the jobs (returned).
+  netmc::v1::StatusReply refresh_nodes_and_jobs();
+  // Adds `metrics` to the view unless that iteration is there already; true if it was new.
+  static bool add_iteration(JobView& view, const netmc::v1::IterationMetrics& metrics);
   // A request the job service answers at once (status, nodes, cancel); its response.
   netmc::v1::Response ask(netmc::v1::Request request, bool admin = false);
   // What the peer received since the last call, each to its place.
