@@ -13,7 +13,7 @@
 #include "plant/linear_motor_axis.hpp"
 #include "plant/resonant_stage_axis.hpp"
 
-// Parameter choices (SI inside; see /work/shared/design/seeds-digest.md):
+// Parameter choices (SI inside; the sources by their short names, README "Plant for paper 001"):
 //
 // seed001 -- paper 001, eq. 3. The paper gives no plant numbers (digest 1.7 [G]); the digest's
 //   [A] default is a servo in speed mode, in mm: X a1=0, a2=-20, b=20, d=-50 tanh(x'/0.05) mm/s^2;
@@ -26,7 +26,7 @@
 //   e_max/ADRC = 0.47 after 11 iterations and drifts upwards.
 //   Sub-step 1 ms: the stiffest term, the friction slope c/scale = 85 1/s (Y), gives
 //   |lambda h| = 0.085; with fifth-order Taylor steps (coulomb_taylor_step.hpp) the study's
-//   metrics agree with RK4 at 10 us sub-steps to 7e-9 relative (README, Performance).
+//   metrics agree with RK4 at 10 us sub-steps to 7e-9 relative (docs/benchmarks.md).
 //
 // ballscrew -- paper 002, eq. 1 and section 3.1, both axes identical: J = 0.8e-3 kg m^2,
 //   B = 0.255 N m s/rad, Ka = 3.2 A/V, Kt = 0.9 N m/A, rg = 5 mm/rad = 0.005 m/rad, giving

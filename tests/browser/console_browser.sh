@@ -11,7 +11,7 @@
 #      reported, and those with the browser may exceed those without by at most a quarter plus
 #      1 % of the cycles (the runs' own spread on this machine)
 #      (Chromium shares these 2 cores with the loop: the loop's processes run SCHED_FIFO with
-#      --cpu-latency 0, as the README's 5 kHz figures; Chromium at nice 10).
+#      --cpu-latency 0, as docs/benchmarks.md's 5 kHz figures; Chromium at nice 10).
 # Usage: console_browser.sh BUILD_DIR
 set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
@@ -85,7 +85,7 @@ browse https --insecure
 stop_lab
 
 # 3. The miss rate at 5 kHz, without and with the console open in the browser: the loop's
-# processes as a 5 kHz loop is run here (SCHED_FIFO, CPUs kept out of deep idle; README,
+# processes as a 5 kHz loop is run here (SCHED_FIFO, CPUs kept out of deep idle; docs/benchmarks.md,
 # "Realtime over DDS"), the browser at normal priority.
 tls_client=(env)
 start_lab --realtime-scheduling
