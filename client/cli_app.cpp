@@ -41,6 +41,7 @@ Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
   const auto run_reset = add_reset_command(app);
   const auto run_status = add_status_command(app);
   const auto run_cancel = add_cancel_command(app);
+  const auto run_jobs = add_jobs_command(app);
   const auto run_cee = add_cee_command(app);
   const auto run_qft = add_qft_command(app);
   app.get_subcommand("run")->footer(R"(Examples:
@@ -69,6 +70,10 @@ Exit code 1 when the job fails or is cancelled (the message says why).)");
   netmc reset lab-x --axis x                                              # one axis
 
 Exit code 1 when the node still reports the fault (one the drive cannot clear), or is gone.)");
+  app.get_subcommand("jobs")->footer(R"(Examples:
+  netmc jobs --server 127.0.0.1:7300                     # the latest 50 jobs, newest first
+  netmc jobs --state failed --since 24h                  # what failed since yesterday
+  netmc jobs --label seed001 --limit 500 --json          # for scripts (netmc.v1.JobList))");
   app.get_subcommand("cee")->footer(R"(Examples:
   netmc cee                                # 2000 samples per contour, seed 1
   netmc cee --points 20000 --max-lag-ms 5 --normal-sd-um 10)");
@@ -102,6 +107,7 @@ Exit code 1 when the node still reports the fault (one the drive cannot clear), 
     if (app.got_subcommand("watch")) return run_watch();
     if (app.got_subcommand("status")) return run_status();
     if (app.got_subcommand("cancel")) return run_cancel();
+    if (app.got_subcommand("jobs")) return run_jobs();
     if (app.got_subcommand("nodes")) return run_nodes();
     if (app.got_subcommand("reset")) return run_reset();
     if (app.got_subcommand("cee")) return run_cee();

@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <ctime>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -407,6 +410,90 @@ std::function<int()> add_cancel_command(CLI::App& app) {
     print_jobs(ask_server(flags->server, [&](netmc::v1::Request& request) {
                  request.mutable_cancel()->set_job_id(flags->job);
                }).status());
+    return 0;
+  };
+}
+
+namespace {
+
+// "90s", "30m", "24h", "7d": seconds.
+double parse_age_s(const std::string& text) {
+  static const std::map<char, double> units{{'s', 1.0}, {'m', 60.0}, {'h', 3600.0}, {'d', 86400.0}};
+  const auto unit = text.empty() ? units.end() : units.find(text.back());
+  double value = 0.0;
+  std::size_t used = 0;
+  try {
+    if (unit != units.end()) value = std::stod(text.substr(0, text.size() - 1), &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (unit == units.end() || used + 1 != text.size() || !std::isfinite(value) || value <= 0.0 || value > 1e6) {
+    throw std::invalid_argument("--since: expected an age such as 90s, 30m, 24h or 7d (up to 1e6 of the unit), got '" +
+                                text.substr(0, 40) + "'");
+  }
+  return value * unit->second;
+}
+
+std::string format_unix_time(double unix_s) {
+  if (unix_s <= 0.0) return "-";
+  const auto time = static_cast<std::time_t>(unix_s);
+  std::tm local{};
+  localtime_r(&time, &local);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%S", &local);
+  return text;
+}
+
+}  // namespace
+
+std::function<int()> add_jobs_command(CLI::App& app) {
+  struct Flags {
+    std::string server = "127.0.0.1:7300";
+    std::string state;
+    std::string label;
+    std::string since;
+    std::uint32_t limit = 50;
+    bool json = false;
+  };
+  auto flags = std::make_shared<Flags>();
+  CLI::App* jobs = app.add_subcommand(
+      "jobs", "The server's job history, newest first: every job its job store keeps (netmc-server --state-dir; "
+              "without one, the jobs in its memory), with who submitted it, when, and how it ended");
+  add_server_option(jobs, flags->server);
+  jobs->add_option("--state", flags->state, "Only jobs in this state")
+      ->check(CLI::IsMember({"queued", "running", "done", "failed", "cancelled"}));
+  jobs->add_option("--label", flags->label, "Only jobs whose label contains this text");
+  jobs->add_option("--since", flags->since, "Only jobs accepted within this age: 90s, 30m, 24h, 7d");
+  jobs->add_option("--limit", flags->limit, "At most this many jobs")->check(CLI::Range(1, 10000));
+  jobs->add_flag("--json", flags->json, "Print the reply as JSON (netmc.v1.JobList), for scripts");
+  return [flags]() -> int {
+    const double since_unix_s =
+        flags->since.empty()
+            ? 0.0
+            : std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count() -
+                  parse_age_s(flags->since);
+    const auto response = ask_server(flags->server, [&](netmc::v1::Request& request) {
+      auto& asked = *request.mutable_jobs();
+      asked.set_state(flags->state);
+      asked.set_label_contains(flags->label);
+      asked.set_since_unix_s(since_unix_s);
+      asked.set_limit(flags->limit);
+    });
+    const auto& list = response.jobs();
+    if (flags->json) {
+      fmt::print("{}\n", job::to_json(list));
+      return 0;
+    }
+    fmt::print("{:>6}  {:<10} {:>10}  {:<19}  {:<19}  {:<22} {:<24} {}\n", "job", "state", "iterations", "accepted",
+               "ended", "owner", "label", "note");
+    for (const auto& job : list.jobs()) {
+      fmt::print("{:>6}  {:<10} {:>10}  {:<19}  {:<19}  {:<22} {:<24} {}\n", job.job_id(), job.state(),
+                 fmt::format("{}/{}", job.iterations_done(), job.iterations_total()),
+                 format_unix_time(job.accepted_unix_s()), format_unix_time(job.ended_unix_s()),
+                 job.owner().substr(0, 22), job.label().substr(0, 24), job.error());
+    }
+    if (list.jobs_size() == 0) fmt::print("(no job)\n");
+    if (!list.persistent()) fmt::print("(from the server's memory: it was started without --state-dir)\n");
     return 0;
   };
 }

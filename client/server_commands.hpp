@@ -26,6 +26,8 @@ std::function<int()> add_reset_command(CLI::App& app);
 std::function<int()> add_status_command(CLI::App& app);
 // netmc cancel JOB: with the admin token, any job; otherwise the server refuses and says why.
 std::function<int()> add_cancel_command(CLI::App& app);
+// netmc jobs: the server's job history (its job store with --state-dir), with filters.
+std::function<int()> add_jobs_command(CLI::App& app);
 
 inline constexpr auto kServerConnectTimeout = std::chrono::milliseconds(3000);
 

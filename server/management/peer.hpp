@@ -2,6 +2,8 @@
 // The other end of a management conversation, as the job service answers it: a network
 // connection (Session) or a client inside netmc-server itself (the console). Thread-safe.
 
+#include <string>
+
 #include "idl/management.pb.h"
 
 namespace netmc::management {
@@ -17,6 +19,8 @@ class Peer {
   // one release().
   virtual void hold() = 0;
   virtual void release() = 0;
+  // Who it is, for the job store and `netmc jobs`: the connection's address, "console", ...
+  virtual std::string name() const { return "client"; }
 };
 
 }  // namespace netmc::management

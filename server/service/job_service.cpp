@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "dds_typesPubSubTypes.h"
@@ -17,6 +18,10 @@
 
 namespace netmc::service {
 namespace {
+
+double unix_now_s() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
 
 netmc::v1::Response error_response(std::uint64_t request_id, const std::string& message) {
   netmc::v1::Response response;
@@ -51,7 +56,13 @@ JobService::JobService(dds::DdsContext& context, NodeDirectory& nodes, ClockTrac
           context.topic<netmc::dds::IterationLogPubSubType>(dds::kIterationLogTopic),
           dds::Delivery::log)),
       scheduler_([this] { schedule(); }),
-      validator_([this] { validate(); }) {}
+      validator_([this] { validate(); }) {
+  if (options_.store) {
+    std::lock_guard lock(mutex_);
+    restore_from_store();
+    wake_.notify_all();
+  }
+}
 
 JobService::~JobService() {
   {
@@ -65,6 +76,8 @@ JobService::~JobService() {
   wake_.notify_all();
   validator_.join();
   scheduler_.join();  // it joins every job thread before it returns
+  // The writes of the jobs' ends, and what follows them (answers to clients), refer to this.
+  if (options_.store) options_.store->flush();
 }
 
 void JobService::handle(const std::shared_ptr<management::Peer>& session,
@@ -73,6 +86,7 @@ void JobService::handle(const std::shared_ptr<management::Peer>& session,
   response.set_request_id(request.request_id());
   switch (request.kind_case()) {
     case netmc::v1::Request::kSubmit: {
+      const std::size_t spec_bytes = request.submit().spec().ByteSizeLong();
       std::lock_guard lock(mutex_);
       if (queue_.size() + submissions_.size() >= options_.max_queued_jobs) {
         session->send(error_response(request.request_id(), "submit: the server's queue is full (" +
@@ -80,6 +94,16 @@ void JobService::handle(const std::shared_ptr<management::Peer>& session,
                                                                " jobs waiting); try again later"));
         return;
       }
+      if (queued_spec_bytes_ + spec_bytes > options_.max_queued_spec_bytes) {
+        session->send(error_response(
+            request.request_id(),
+            fmt::format("submit: the jobs waiting hold {:.1f} MiB of specs and this one {:.1f} MiB, beyond the "
+                        "server's {:.0f} MiB; try again when the queue is shorter",
+                        static_cast<double>(queued_spec_bytes_) / 1048576.0, static_cast<double>(spec_bytes) / 1048576.0,
+                        static_cast<double>(options_.max_queued_spec_bytes) / 1048576.0)));
+        return;
+      }
+      queued_spec_bytes_ += spec_bytes;
       submissions_.push_back({session, request});
       wake_.notify_all();
       return;
@@ -105,23 +129,7 @@ void JobService::handle(const std::shared_ptr<management::Peer>& session,
       // A queued job leaves the queue now, not when the job ahead of it ends.
       if (const auto queued = std::find(queue_.begin(), queue_.end(), it->second); queued != queue_.end()) {
         queue_.erase(queued);
-        job.status.set_state("cancelled");
-        job.status.set_error(job.cancel_reason);
-        job.status.clear_waiting_for();
-        netmc::v1::JobFinished finished;
-        finished.set_job_id(job.id);
-        finished.set_state("cancelled");
-        finished.set_error(job.cancel_reason);
-        job.finished = finished;
-        end_watches(job, finished);
-        ended_.push_back(job.id);
-        if (const auto submitter = job.session.lock()) {
-          netmc::v1::Response end;
-          end.set_request_id(job.request_id);
-          *end.mutable_finished() = finished;
-          submitter->send(end);
-          submitter->release();
-        }
+        end_queued(job, job.cancel_reason);
         spdlog::info("job {} cancelled while queued", job.id);
         wake_.notify_all();
       }
@@ -144,7 +152,8 @@ void JobService::handle(const std::shared_ptr<management::Peer>& session,
         session->send(error_response(request.request_id(),
                                      "watch: no job " + std::to_string(request.watch().job_id()) +
                                          " (never submitted, or ended more than " +
-                                         std::to_string(options_.job_history) + " jobs ago)"));
+                                         std::to_string(options_.job_history) +
+                                         " jobs ago: netmc jobs lists the server's history)"));
         return;
       }
       start_watch(*it->second, session, request.request_id());
@@ -204,8 +213,17 @@ void JobService::handle(const std::shared_ptr<management::Peer>& session,
       fill_node_info(*target, std::chrono::steady_clock::now(), *reply.add_nodes());
       break;
     }
+    case netmc::v1::Request::kJobs:
+      try {
+        *response.mutable_jobs() = list_jobs(request.jobs());
+      } catch (const std::exception& error) {
+        session->send(error_response(request.request_id(), std::string("jobs: ") + error.what()));
+        return;
+      }
+      break;
     case netmc::v1::Request::KIND_NOT_SET:
-      session->send(error_response(request.request_id(), "request: empty (expected submit, cancel, status, watch, nodes or reset)"));
+      session->send(error_response(request.request_id(),
+                                   "request: empty (expected submit, cancel, status, watch, nodes, reset or jobs)"));
       return;
   }
   session->send(response);
@@ -272,27 +290,56 @@ void JobService::admit(const Submission& submission) {
   const auto& request = submission.request;
   const auto& session = submission.session;
   netmc::v1::JobSpec spec = request.submit().spec();
+  const std::size_t spec_bytes = spec.ByteSizeLong();  // as handle() counted it
+  const auto refuse = [&](const std::string& message) {
+    {
+      std::lock_guard lock(mutex_);
+      queued_spec_bytes_ -= spec_bytes;
+    }
+    session->send(error_response(request.request_id(), message));
+  };
   job::apply_defaults(spec);
   try {
     job::reject_file_references(spec);  // the server opens no path a client names
     job::build_contour_job(spec, options_.build_options());  // every field checked before the job is queued
   } catch (const std::exception& error) {
-    session->send(error_response(request.request_id(), error.what()));
+    refuse(error.what());
     return;
   }
   auto job = std::make_shared<Job>();
   job->axes = job::axis_names(spec);
   job->spec = spec;
+  job->spec_bytes = spec_bytes;
   job->session = session;
   job->request_id = request.request_id();
   job->keep_after_disconnect = request.submit().keep_after_disconnect();
+  job->owner = session->name();
+  job->accepted_unix_s = unix_now_s();
+  const std::string label = spec.name().empty() ? spec.controller().name() : spec.name();
+  std::uint64_t stored_id = 0;
+  if (options_.store) {
+    // Accepted only once on disk: a crash after the client hears "accepted" loses nothing.
+    store::StoredJob stored;
+    stored.label = label;
+    stored.owner = job->owner;
+    stored.spec = spec.SerializeAsString();
+    stored.iterations_total = spec.iterations();
+    stored.keep_after_disconnect = job->keep_after_disconnect;
+    try {
+      stored_id = options_.store->accept(stored);
+    } catch (const store::StoreError& error) {
+      refuse(std::string("submit: not accepted: ") + error.what() +
+             "; the server accepts no job until its job store can be written (--state-dir)");
+      return;
+    }
+  }
   std::lock_guard lock(mutex_);
   if (stopping_) return;
-  job->id = next_id_++;
+  job->id = options_.store ? stored_id : next_id_++;
   job->status.set_job_id(job->id);
   job->status.set_state("queued");
   job->status.set_iterations_total(spec.iterations());
-  job->status.set_label(spec.name().empty() ? spec.controller().name() : spec.name());
+  job->status.set_label(label);
   jobs_[job->id] = job;
   session->hold();  // not idle while its job is queued or running
   // Acknowledge before the worker can see the job, so "accepted" precedes its updates.
@@ -318,14 +365,7 @@ void JobService::tend_jobs() {
       continue;
     }
     spdlog::info("job {} dropped from the queue: its client disconnected", job.id);
-    job.status.set_state("cancelled");
-    job.status.set_error("its client disconnected");
-    netmc::v1::JobFinished finished;
-    finished.set_job_id(job.id);
-    finished.set_state("cancelled");
-    finished.set_error(job.status.error());
-    end_watches(job, finished);
-    ended_.push_back(job.id);
+    end_queued(job, "its client disconnected");
     it = queue_.erase(it);
   }
   for (const auto& [id, thread] : running_) {
@@ -366,7 +406,7 @@ void JobService::start_watch(Job& job, const std::shared_ptr<management::Peer>& 
     netmc::v1::Response update;
     update.set_request_id(request_id);
     update.mutable_iteration()->set_job_id(job.id);
-    update.mutable_iteration()->set_total_iterations(job.spec.iterations());
+    update.mutable_iteration()->set_total_iterations(job.status.iterations_total());
     *update.mutable_iteration()->mutable_metrics() = metrics;
     session->send(update);
   };
@@ -420,6 +460,7 @@ void JobService::schedule() {
     for (const std::size_t index : start) starting.push_back(queue_[index]);
     for (const auto& job : starting) {
       queue_.erase(std::find(queue_.begin(), queue_.end(), job));
+      queued_spec_bytes_ -= job->spec_bytes;
       busy_axes_.insert(job->axes.begin(), job->axes.end());
       job->status.set_state("running");
       job->status.clear_waiting_for();
@@ -427,7 +468,7 @@ void JobService::schedule() {
                    running_.size() + 1,
                    queue_.size());
       running_.emplace(job->id, std::thread([this, job] {
-        run(*job);
+        run(job);
         finish(job);
       }));
     }
@@ -455,6 +496,7 @@ void JobService::finish(const std::shared_ptr<Job>& job) {
   {
     std::lock_guard lock(mutex_);
     ended_.push_back(job->id);
+    job->spec = netmc::v1::JobSpec();  // an ended job keeps its status and result, not its spec
     for (const auto& axis : job->axes) busy_axes_.erase(axis);
     const auto it = running_.find(job->id);
     finished_.push_back(std::move(it->second));
@@ -518,11 +560,23 @@ std::vector<NodeRecord> JobService::find_nodes(const Job& job, const JobChannels
       throw JobFailure("node " + node->status.node() + " hosts plant '" + node->status.plant() +
                        "' but the job needs '" + job.spec.plant() + "'");
     }
-    for (const auto& hold : node->status.holds()) {
-      if (hold.axis() == axis && hold.server() != context_.identity()) {
-        throw JobFailure("axis " + axis + " (node " + node->status.node() + ") is held by server " +
-                         hold.server() + ", job " + std::to_string(hold.job_id()));
+    // Another server's hold: a server that died (or this one before its restart) holds the axis
+    // until the node's hold lease ends (10 s without contact); a live one keeps it.
+    const auto foreign_hold = [&]() -> const netmc::dds::AxisHold* {
+      for (const auto& hold : node->status.holds()) {
+        if (hold.axis() == axis && hold.server() != context_.identity()) return &hold;
       }
+      return nullptr;
+    };
+    const auto hold_deadline = std::chrono::steady_clock::now() + options_.foreign_hold_wait;
+    while (foreign_hold() && std::chrono::steady_clock::now() < hold_deadline && !job.cancel.load()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      if (auto again = nodes_.node_for_axis(axis)) node = std::move(again);
+    }
+    if (const auto* hold = foreign_hold()) {
+      throw JobFailure("axis " + axis + " (node " + node->status.node() + ") is held by server " + hold->server() +
+                       ", job " + std::to_string(hold->job_id()) + " (waited " +
+                       std::to_string(options_.foreign_hold_wait.count()) + " ms)");
     }
     found.push_back(*node);
     participants.push_back(node->status.participant());
@@ -549,9 +603,9 @@ std::vector<NodeRecord> JobService::find_nodes(const Job& job, const JobChannels
   return found;
 }
 
-void JobService::run(Job& job) {
-  netmc::v1::Response finished;
-  auto& done = *finished.mutable_finished();
+void JobService::run(const std::shared_ptr<Job>& shared_job) {
+  Job& job = *shared_job;
+  netmc::v1::JobFinished done;
   done.set_job_id(job.id);
   std::string state = "done";
   try {
@@ -602,6 +656,26 @@ void JobService::run(Job& job) {
       iteration.set_job_id(job.id);
       iteration.set_total_iterations(job.spec.iterations());
       *iteration.mutable_metrics() = metrics;
+      // Watchers and the client hear of the iteration once it is kept (written, with a store).
+      auto deliver = [this, shared_job, update]() mutable {
+        {
+          std::lock_guard lock(mutex_);
+          shared_job->iterations.push_back(update.iteration().metrics());
+          for (const auto& watcher : shared_job->watchers) {
+            if (const auto session = watcher.session.lock()) {
+              update.set_request_id(watcher.request_id);
+              session->send(update);
+            }
+          }
+        }
+        reply(*shared_job, update);
+      };
+      if (options_.store) {
+        options_.store->iteration(job.id, static_cast<std::uint32_t>(record.metrics.iteration),
+                                  metrics.SerializeAsString(), std::move(deliver));
+      } else {
+        deliver();
+      }
       {
         std::lock_guard lock(mutex_);
         const auto& m = record.metrics;
@@ -616,15 +690,7 @@ void JobService::run(Job& job) {
         totals_.tau_sum_s += m.tau_mean_s * static_cast<double>(delays);
         totals_.tau_count += delays;
         job.status.set_iterations_done(static_cast<std::uint32_t>(record.metrics.iteration));
-        job.iterations.push_back(metrics);
-        for (const auto& watcher : job.watchers) {
-          if (const auto session = watcher.session.lock()) {
-            update.set_request_id(watcher.request_id);
-            session->send(update);
-          }
-        }
       }
-      reply(job, update);
       spdlog::info("job {} iteration {}/{}: e_max {:.4f} mm, e_sum {:.3f} mm{}", job.id, record.metrics.iteration,
                    job.spec.iterations(), record.metrics.e_max_m * 1e3, record.metrics.e_sum_m * 1e3,
                    record.metrics.deadline_misses > 0
@@ -650,12 +716,14 @@ void JobService::run(Job& job) {
       RealtimeDdsRunner runner(channels, job.spec, job.id, {options_.axis_timeout, options_.silence_limit, options_.positioning_timeout},
                                clocks_.time_base(), offsets, options_.build_options());
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
+      if (options_.store) options_.store->started(job.id, done.result().SerializeAsString());
       job_cycles = runner.cycles();
       if (auto live = options_.live_cycles ? options_.live_cycles(job.id) : nullptr) runner.set_cycle_listener(live);
       runner.run(on_iteration, job.cancel);
     } else {
       LockstepDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout, options_.build_options());
       *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
+      if (options_.store) options_.store->started(job.id, done.result().SerializeAsString());
       job_cycles = runner.cycles();
       if (auto live = options_.live_cycles ? options_.live_cycles(job.id) : nullptr) runner.set_cycle_listener(live);
       runner.run(on_iteration, job.cancel);
@@ -669,15 +737,171 @@ void JobService::run(Job& job) {
     std::lock_guard lock(mutex_);
     // A cancelled job ends for its reason; what it was doing when it stopped matters less.
     if (state == "cancelled") done.set_error(job.cancel_reason);
-    job.status.set_state(state);
-    job.status.set_error(done.error());
-    done.set_state(state);
-    job.finished = done;
-    end_watches(job, done);
   }
+  done.set_state(state);
   const auto level = state == "failed" ? spdlog::level::err : spdlog::level::info;
   spdlog::log(level, "job {} {}{}", job.id, state, done.error().empty() ? "" : ": " + done.error());
-  reply(job, finished);
+  conclude(shared_job, std::move(done));
+}
+
+void JobService::conclude(const std::shared_ptr<Job>& job, netmc::v1::JobFinished finished) {
+  auto tell = [this, job, finished]() {
+    {
+      std::lock_guard lock(mutex_);
+      job->status.set_state(finished.state());
+      job->status.set_error(finished.error());
+      job->ended_unix_s = unix_now_s();
+      job->finished = finished;
+      end_watches(*job, finished);
+    }
+    netmc::v1::Response end;
+    *end.mutable_finished() = finished;
+    reply(*job, end);
+  };
+  if (options_.store) {
+    options_.store->ended(job->id, finished.state(), finished.error(), finished.SerializeAsString(), std::move(tell));
+  } else {
+    tell();
+  }
+}
+
+void JobService::end_queued(Job& job, const std::string& reason) {
+  queued_spec_bytes_ -= job.spec_bytes;
+  job.spec = netmc::v1::JobSpec();
+  job.status.set_state("cancelled");
+  job.status.set_error(reason);
+  job.status.clear_waiting_for();
+  job.ended_unix_s = unix_now_s();
+  netmc::v1::JobFinished finished;
+  finished.set_job_id(job.id);
+  finished.set_state("cancelled");
+  finished.set_error(reason);
+  job.finished = finished;
+  end_watches(job, finished);
+  ended_.push_back(job.id);
+  if (const auto submitter = job.session.lock()) {
+    netmc::v1::Response end;
+    end.set_request_id(job.request_id);
+    *end.mutable_finished() = finished;
+    submitter->send(end);
+    submitter->release();
+  }
+  if (options_.store) options_.store->ended(job.id, "cancelled", reason, finished.SerializeAsString());
+}
+
+void JobService::restore_from_store() {
+  const auto contents = options_.store->load(options_.job_history);
+  const auto make_job = [this](const store::StoredJob& stored) {
+    auto job = std::make_shared<Job>();
+    job->id = stored.id;
+    job->owner = stored.owner;
+    job->accepted_unix_s = stored.accepted_unix_s;
+    job->ended_unix_s = stored.ended_unix_s;
+    // No connection outlived the restart: the job is the server's until it ends.
+    job->keep_after_disconnect = true;
+    job->status.set_job_id(stored.id);
+    job->status.set_state(stored.state);
+    job->status.set_error(stored.error);
+    job->status.set_label(stored.label);
+    job->status.set_iterations_total(stored.iterations_total);
+    job->status.set_iterations_done(stored.iterations_done);
+    jobs_[job->id] = job;
+    return job;
+  };
+  for (const auto& stored : contents.ended) {
+    auto job = make_job(stored);
+    netmc::v1::JobFinished finished;
+    if (finished.ParseFromString(stored.finished)) job->finished = std::move(finished);
+    ended_.push_back(job->id);
+  }
+  std::size_t requeued = 0, failed = 0;
+  for (const auto& stored : contents.unfinished) {
+    auto job = make_job(stored);
+    if (stored.state == "running") {
+      // What it finished is kept; the iteration under way when the server stopped is lost.
+      netmc::v1::JobFinished finished;
+      finished.set_job_id(job->id);
+      finished.set_state("failed");
+      finished.set_error("server restarted during iteration " + std::to_string(stored.iterations.size() + 1));
+      (void)finished.mutable_result()->ParseFromString(stored.result_header);
+      for (const auto& iteration : stored.iterations) {
+        (void)finished.mutable_result()->add_iterations()->ParseFromString(iteration.metrics);
+      }
+      job->status.set_state("failed");
+      job->status.set_error(finished.error());
+      job->ended_unix_s = unix_now_s();
+      job->finished = finished;
+      ended_.push_back(job->id);
+      options_.store->ended(job->id, "failed", finished.error(), finished.SerializeAsString());
+      ++failed;
+      continue;
+    }
+    if (!job->spec.ParseFromString(stored.spec)) {
+      job->status.set_state("failed");
+      job->status.set_error("its stored spec cannot be read");
+      options_.store->ended(job->id, "failed", job->status.error(), {});
+      ended_.push_back(job->id);
+      continue;
+    }
+    job->spec_bytes = job->spec.ByteSizeLong();
+    job->axes = job::axis_names(job->spec);
+    queued_spec_bytes_ += job->spec_bytes;
+    queue_.push_back(job);
+    ++requeued;
+  }
+  spdlog::info("job store {}: {} ended jobs in memory, {} queued again, {} failed by the restart",
+               options_.store->file().string(), contents.ended.size(), requeued, failed);
+}
+
+netmc::v1::JobList JobService::list_jobs(const netmc::v1::ListJobs& request) const {
+  store::JobFilter filter;
+  filter.state = request.state();
+  filter.label_contains = request.label_contains();
+  filter.since_unix_s = request.since_unix_s();
+  filter.limit = request.limit() == 0 ? 50 : std::min<std::uint32_t>(request.limit(), 10000);
+  static const std::set<std::string> states{"", "queued", "running", "done", "failed", "cancelled"};
+  if (!states.contains(filter.state)) {
+    throw std::invalid_argument("state: '" + filter.state.substr(0, 32) +
+                                "' is none of queued, running, done, failed, cancelled");
+  }
+  if (!std::isfinite(filter.since_unix_s)) throw std::invalid_argument("since: not a finite time");
+  if (filter.label_contains.size() > 256) throw std::invalid_argument("label: longer than 256 characters");
+  netmc::v1::JobList list;
+  const auto add = [&list](std::uint64_t id, const std::string& label, const std::string& state,
+                           const std::string& error, const std::string& owner, double accepted, double ended,
+                           std::uint32_t done, std::uint32_t total) {
+    auto& record = *list.add_jobs();
+    record.set_job_id(id);
+    record.set_label(label);
+    record.set_state(state);
+    record.set_error(error);
+    record.set_owner(owner);
+    record.set_accepted_unix_s(accepted);
+    record.set_ended_unix_s(ended);
+    record.set_iterations_done(done);
+    record.set_iterations_total(total);
+  };
+  if (options_.store) {
+    // The store's state lags the memory's by the writes queued: a running job is "running" in
+    // both; its end shows once written.
+    list.set_persistent(true);
+    for (const auto& job : options_.store->list(filter)) {
+      add(job.id, job.label, job.state, job.error, job.owner, job.accepted_unix_s, job.ended_unix_s,
+          job.iterations_done, job.iterations_total);
+    }
+    return list;
+  }
+  std::lock_guard lock(mutex_);
+  for (auto it = jobs_.rbegin(); it != jobs_.rend() && list.jobs_size() < static_cast<int>(filter.limit); ++it) {
+    const Job& job = *it->second;
+    const auto& status = job.status;
+    if (!filter.state.empty() && status.state() != filter.state) continue;
+    if (!filter.label_contains.empty() && status.label().find(filter.label_contains) == std::string::npos) continue;
+    if (job.accepted_unix_s < filter.since_unix_s) continue;
+    add(job.id, status.label(), status.state(), status.error(), job.owner, job.accepted_unix_s, job.ended_unix_s,
+        status.iterations_done(), status.iterations_total());
+  }
+  return list;
 }
 
 }  // namespace netmc::service

@@ -25,6 +25,7 @@
 #include "server/service/dds_job_messages.hpp"
 #include "server/service/node_directory.hpp"
 #include "server/sim/cycle_listener.hpp"
+#include "server/store/job_store.hpp"
 
 namespace netmc::service {
 
@@ -35,10 +36,16 @@ struct JobServiceOptions {
   dds::TimeBase time_base = dds::TimeBase::monotonic; // realtime jobs' schedule
   std::size_t max_running_jobs = 32;
   std::size_t max_queued_jobs = 256;                  // waiting for validation or for axes
-  std::size_t job_history = 256;                      // ended jobs kept for status; older ones forgotten
+  std::size_t job_history = 256;                      // ended jobs kept in memory for status and watch
+  // Bytes of job specs waiting (for validation or for axes); a submit beyond is refused. A spec
+  // may carry inline delay traces of megabytes.
+  std::size_t max_queued_spec_bytes = std::size_t{256} << 20;
   std::size_t max_watchers_per_job = 16;              // netmc watch connections following one job
   // Realtime: for every axis to stand ready at an iteration's start (hardware is moved there).
   std::chrono::milliseconds positioning_timeout{60000};
+  // An axis held by another server: how long a job waits for the hold to end (a node lets the
+  // hold of a server it no longer hears from go after its hold lease, 10 s).
+  std::chrono::milliseconds foreign_hold_wait{15000};
   // The server has an admin token: resetting an axis's fault needs it.
   bool admin_token_configured = false;
   // Controller plugins a job may name (netmc-server --allow-plugin), exact paths; none: no plugin.
@@ -46,6 +53,10 @@ struct JobServiceOptions {
   // A live view of each job's cycles (the console): called when a job starts running; null or
   // unset: none.
   std::function<std::shared_ptr<sim::CycleListener>(std::uint64_t job_id)> live_cycles;
+  // The persistent job store (netmc-server --state-dir); null: jobs live in memory only. When
+  // set, a job is accepted only once it is on disk, a client hears of an iteration only once it
+  // is kept, and the service starts with the store's queue and history.
+  std::shared_ptr<store::JobStore> store;
 
   // How the server builds a job: the controller here (a plugin only if allowed), plants read
   // from files only on their axis nodes.
@@ -108,6 +119,10 @@ class JobService {
     std::string cancel_reason;  // set with `cancel`, under the service's mutex
     std::vector<std::string> axes;
     bool keep_after_disconnect = false;
+    std::string owner;                // who submitted it
+    double accepted_unix_s = 0.0;
+    double ended_unix_s = 0.0;
+    std::size_t spec_bytes = 0;       // counted against max_queued_spec_bytes while it waits
     // Under the service's mutex: the iterations reported so far (until it ends), its end (once
     // it has ended; a job dropped from the queue has none) and who follows it.
     std::vector<netmc::v1::IterationMetrics> iterations;
@@ -129,7 +144,16 @@ class JobService {
   // Starts every queued job whose axes are free, in submission order: a job never overtakes an
   // earlier one that waits for one of its axes.
   void schedule();
-  void run(Job& job);
+  // Before the threads start: the store's unfinished jobs (a running one failed by the restart,
+  // the queued ones queued again in their order) and its latest ended ones.
+  void restore_from_store();
+  void run(const std::shared_ptr<Job>& job);
+  // Under mutex_: a queued job ends without running (cancelled, its client gone).
+  void end_queued(Job& job, const std::string& reason);
+  // The job has ended with `finished`: kept in the store, then its status, watchers and client.
+  void conclude(const std::shared_ptr<Job>& job, netmc::v1::JobFinished finished);
+  // netmc jobs: the history, from the store (or from memory without one).
+  netmc::v1::JobList list_jobs(const netmc::v1::ListJobs& filter) const;
   void finish(const std::shared_ptr<Job>& job);
   void reply(Job& job, netmc::v1::Response response);
   // Under mutex_: a new watcher of `job` gets its status and the iterations so far (and its end,
@@ -166,6 +190,7 @@ class JobService {
   std::map<std::uint64_t, std::thread> running_;   // job threads, by job id
   std::vector<std::thread> finished_;              // to be joined
   std::deque<Submission> submissions_;            // waiting for validation
+  std::size_t queued_spec_bytes_ = 0;              // of the submissions and the queue
   std::deque<std::uint64_t> ended_;                // ended job ids, oldest first
   std::uint64_t next_id_ = 1;
   bool stopping_ = false;

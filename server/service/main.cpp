@@ -64,6 +64,18 @@ int main(int argc, char** argv) {
   app.add_option("--max-queued-jobs", max_queued_jobs,
                  "Jobs waiting (for validation or for their axes); a submit beyond is refused")
       ->check(CLI::Range(1, 100000));
+  std::string state_dir;
+  app.add_option("--state-dir", state_dir,
+                 "Keep every accepted job, its iterations and its result in DIR/jobs.sqlite: after a crash or "
+                 "restart the queue runs on, a job that was running is failed with what it finished, and netmc "
+                 "status, watch and jobs answer as before (docs/operations/job-store.md); default: memory only")
+      ->envname("NETMC_STATE_DIR");
+  int keep_jobs = 10000;
+  app.add_option("--keep-jobs", keep_jobs, "With --state-dir: ended jobs kept, the newest; older ones are deleted")
+      ->check(CLI::Range(1, 10000000));
+  double keep_days = 90.0;
+  app.add_option("--keep-days", keep_days, "With --state-dir: ended jobs older than this are deleted")
+      ->check(CLI::Range(0.001, 36500.0));
   netmc::management::ManagementLimits limits;
   int max_connections = static_cast<int>(limits.max_connections);
   app.add_option("--max-connections", max_connections,
@@ -193,6 +205,16 @@ int main(int argc, char** argv) {
       options.live_cycles = [&console](std::uint64_t job_id) -> std::shared_ptr<netmc::sim::CycleListener> {
         return console ? console->live_cycles(job_id) : nullptr;
       };
+    }
+    if (!state_dir.empty()) {
+      netmc::store::Retention retention;
+      retention.keep_jobs = static_cast<std::size_t>(keep_jobs);
+      retention.keep_for = std::chrono::seconds(static_cast<std::int64_t>(keep_days * 86400.0));
+      try {
+        options.store = std::make_shared<netmc::store::JobStore>(state_dir, retention);
+      } catch (const netmc::store::StoreError& error) {
+        throw std::invalid_argument(std::string("--state-dir: ") + error.what());
+      }
     }
     netmc::service::JobService jobs(context, nodes, clocks, options);
     limits.max_connections = static_cast<std::size_t>(max_connections);

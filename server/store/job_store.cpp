@@ -1,0 +1,457 @@
+#include "server/store/job_store.hpp"
+
+#include <spdlog/spdlog.h>
+#include <sqlite3.h>
+
+#include <future>
+#include <system_error>
+
+namespace netmc::store {
+namespace {
+
+double unix_now_s() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+// A prepared statement, finalized when it goes out of scope.
+class Statement {
+ public:
+  Statement(sqlite3* db, const char* sql) : db_(db) {
+    if (sqlite3_prepare_v2(db, sql, -1, &statement_, nullptr) != SQLITE_OK) fail("prepare");
+  }
+  ~Statement() { sqlite3_finalize(statement_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+
+  Statement& bind(int index, std::int64_t value) {
+    check(sqlite3_bind_int64(statement_, index, value));
+    return *this;
+  }
+  Statement& bind(int index, double value) {
+    check(sqlite3_bind_double(statement_, index, value));
+    return *this;
+  }
+  Statement& bind(int index, const std::string& value) {
+    check(sqlite3_bind_blob(statement_, index, value.data(), static_cast<int>(value.size()), SQLITE_TRANSIENT));
+    return *this;
+  }
+  Statement& bind_text(int index, const std::string& value) {
+    check(sqlite3_bind_text(statement_, index, value.data(), static_cast<int>(value.size()), SQLITE_TRANSIENT));
+    return *this;
+  }
+  // True while there is a row; throws on an error.
+  bool step() {
+    const int code = sqlite3_step(statement_);
+    if (code == SQLITE_ROW) return true;
+    if (code == SQLITE_DONE) return false;
+    fail("step");
+    return false;
+  }
+  void run() {
+    while (step()) {
+    }
+  }
+  std::int64_t integer(int column) const { return sqlite3_column_int64(statement_, column); }
+  double real(int column) const { return sqlite3_column_double(statement_, column); }
+  std::string bytes(int column) const {
+    const auto* data = static_cast<const char*>(sqlite3_column_blob(statement_, column));
+    return data ? std::string(data, static_cast<std::size_t>(sqlite3_column_bytes(statement_, column))) : std::string();
+  }
+
+ private:
+  void check(int code) {
+    if (code != SQLITE_OK) fail("bind");
+  }
+  [[noreturn]] void fail(const char* what) const {
+    throw StoreError(std::string(what) + ": " + sqlite3_errmsg(db_));
+  }
+  sqlite3* db_;
+  sqlite3_stmt* statement_ = nullptr;
+};
+
+void execute(sqlite3* db, const char* sql) {
+  char* message = nullptr;
+  if (sqlite3_exec(db, sql, nullptr, nullptr, &message) != SQLITE_OK) {
+    std::string text = message ? message : sqlite3_errmsg(db);
+    sqlite3_free(message);
+    throw StoreError(text);
+  }
+}
+
+// Schema migrations: entry k takes a store of version k to version k + 1.
+constexpr const char* kMigrations[] = {
+    // 0 -> 1: jobs, their state changes and their iterations.
+    "CREATE TABLE jobs("
+    "  id INTEGER PRIMARY KEY AUTOINCREMENT,"
+    "  label TEXT NOT NULL, owner TEXT NOT NULL, spec BLOB NOT NULL,"
+    "  iterations_total INTEGER NOT NULL, keep_after_disconnect INTEGER NOT NULL,"
+    "  state TEXT NOT NULL, error TEXT NOT NULL DEFAULT '',"
+    "  accepted_unix_s REAL NOT NULL, ended_unix_s REAL NOT NULL DEFAULT 0,"
+    "  result_header BLOB, finished BLOB);"
+    "CREATE INDEX jobs_by_state ON jobs(state);"
+    "CREATE TABLE job_events(job_id INTEGER NOT NULL, at_unix_s REAL NOT NULL, state TEXT NOT NULL,"
+    "  reason TEXT NOT NULL);"
+    "CREATE INDEX job_events_by_job ON job_events(job_id);"
+    "CREATE TABLE iterations(job_id INTEGER NOT NULL, iteration INTEGER NOT NULL, metrics BLOB NOT NULL,"
+    "  PRIMARY KEY(job_id, iteration));",
+};
+static_assert(std::size(kMigrations) == JobStore::kSchemaVersion);
+
+sqlite3* open_database(const std::filesystem::path& file, int flags) {
+  sqlite3* db = nullptr;
+  const int code = sqlite3_open_v2(file.c_str(), &db, flags | SQLITE_OPEN_FULLMUTEX, nullptr);
+  if (code != SQLITE_OK) {
+    const std::string message = db ? sqlite3_errmsg(db) : sqlite3_errstr(code);
+    sqlite3_close(db);
+    throw StoreError("job store " + file.string() + ": cannot open: " + message);
+  }
+  sqlite3_busy_timeout(db, 5000);
+  sqlite3_extended_result_codes(db, 1);
+  return db;
+}
+
+void add_event(sqlite3* db, std::uint64_t id, const std::string& state, const std::string& reason) {
+  Statement(db, "INSERT INTO job_events(job_id, at_unix_s, state, reason) VALUES(?, ?, ?, ?)")
+      .bind(1, static_cast<std::int64_t>(id))
+      .bind(2, unix_now_s())
+      .bind_text(3, state)
+      .bind_text(4, reason)
+      .run();
+}
+
+// A transaction that rolls back unless committed.
+class Transaction {
+ public:
+  explicit Transaction(sqlite3* db) : db_(db) { execute(db_, "BEGIN IMMEDIATE"); }
+  ~Transaction() {
+    if (!done_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+  }
+  void commit() {
+    execute(db_, "COMMIT");
+    done_ = true;
+  }
+
+ private:
+  sqlite3* db_;
+  bool done_ = false;
+};
+
+StoredJob read_job_columns(const Statement& row) {
+  // id, label, owner, spec, iterations_total, keep, state, error, accepted, ended, header, finished, done
+  StoredJob job;
+  job.id = static_cast<std::uint64_t>(row.integer(0));
+  job.label = row.bytes(1);
+  job.owner = row.bytes(2);
+  job.spec = row.bytes(3);
+  job.iterations_total = static_cast<std::uint32_t>(row.integer(4));
+  job.keep_after_disconnect = row.integer(5) != 0;
+  job.state = row.bytes(6);
+  job.error = row.bytes(7);
+  job.accepted_unix_s = row.real(8);
+  job.ended_unix_s = row.real(9);
+  job.result_header = row.bytes(10);
+  job.finished = row.bytes(11);
+  job.iterations_done = static_cast<std::uint32_t>(row.integer(12));
+  return job;
+}
+
+constexpr const char* kJobColumns =
+    "id, label, owner, spec, iterations_total, keep_after_disconnect, state, error, accepted_unix_s, ended_unix_s, "
+    "result_header, finished, (SELECT count(*) FROM iterations WHERE job_id = jobs.id)";
+
+}  // namespace
+
+JobStore::JobStore(const std::filesystem::path& directory, Retention retention, std::size_t max_pending_writes)
+    : file_(directory / "jobs.sqlite"), retention_(retention), max_pending_(max_pending_writes) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) throw StoreError("--state-dir: cannot create " + directory.string() + ": " + error.message());
+  writer_db_ = open_database(file_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  try {
+    {
+      Statement integrity(writer_db_, "PRAGMA quick_check");
+      if (integrity.step() && integrity.bytes(0) != "ok") {
+        throw StoreError("integrity check failed: " + integrity.bytes(0));
+      }
+    }
+    // WAL: readers (netmc jobs) never wait for the writer; FULL: a committed change survives a
+    // power cut, not only a crash of the process.
+    {
+      Statement journal(writer_db_, "PRAGMA journal_mode=WAL");
+      if (!journal.step() || journal.bytes(0) != "wal") throw StoreError("cannot use the WAL journal");
+    }
+    execute(writer_db_, "PRAGMA synchronous=FULL");
+    int version = 0;
+    {
+      Statement version_query(writer_db_, "PRAGMA user_version");
+      version_query.step();
+      version = static_cast<int>(version_query.integer(0));
+    }
+    if (version > kSchemaVersion) {
+      throw StoreError("schema version " + std::to_string(version) + " was written by a newer netmc (this one knows " +
+                       std::to_string(kSchemaVersion) + "); use that netmc, or another --state-dir");
+    }
+    for (int step = version; step < kSchemaVersion; ++step) {
+      Transaction migration(writer_db_);
+      execute(writer_db_, kMigrations[step]);
+      execute(writer_db_, ("PRAGMA user_version=" + std::to_string(step + 1)).c_str());
+      migration.commit();
+    }
+    try {
+      prune(writer_db_);
+    } catch (const StoreError& problem) {  // a full disk: the jobs are still there to run
+      spdlog::warn("job store {}: old jobs not deleted: {}", file_.string(), problem.what());
+    }
+    reader_db_ = open_database(file_, SQLITE_OPEN_READONLY);
+  } catch (const StoreError& problem) {
+    sqlite3_close(writer_db_);
+    sqlite3_close(reader_db_);
+    throw StoreError("job store " + file_.string() + ": " + problem.what());
+  }
+  writer_ = std::thread([this] { write_loop(); });
+}
+
+JobStore::~JobStore() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  writer_.join();
+  sqlite3_close(reader_db_);
+  sqlite3_close(writer_db_);
+}
+
+JobStore::Contents JobStore::load(std::size_t history) {
+  std::lock_guard lock(reader_mutex_);
+  Contents contents;
+  const std::string columns = kJobColumns;
+  Statement unfinished(reader_db_, ("SELECT " + columns + " FROM jobs WHERE state IN ('queued', 'running') ORDER BY id").c_str());
+  while (unfinished.step()) contents.unfinished.push_back(read_job_columns(unfinished));
+  for (auto& job : contents.unfinished) {
+    Statement iterations(reader_db_, "SELECT iteration, metrics FROM iterations WHERE job_id = ? ORDER BY iteration");
+    iterations.bind(1, static_cast<std::int64_t>(job.id));
+    while (iterations.step()) {
+      job.iterations.push_back({static_cast<std::uint32_t>(iterations.integer(0)), iterations.bytes(1)});
+    }
+  }
+  Statement ended(reader_db_, ("SELECT * FROM (SELECT " + columns +
+                               " FROM jobs WHERE state NOT IN ('queued', 'running') ORDER BY id DESC LIMIT ?) ORDER BY id")
+                                  .c_str());
+  ended.bind(1, static_cast<std::int64_t>(history));
+  while (ended.step()) {
+    contents.ended.push_back(read_job_columns(ended));
+    contents.ended.back().spec.clear();  // an ended job needs no spec in memory
+  }
+  return contents;
+}
+
+std::uint64_t JobStore::accept(const StoredJob& job, std::chrono::milliseconds timeout) {
+  auto outcome = std::make_shared<std::promise<std::uint64_t>>();
+  auto result = outcome->get_future();
+  Write write;
+  write.what = "a new job (" + job.label + ")";
+  write.apply = [job, outcome](sqlite3* db) {
+    try {
+      Transaction transaction(db);
+      Statement(db,
+                "INSERT INTO jobs(label, owner, spec, iterations_total, keep_after_disconnect, state, accepted_unix_s) "
+                "VALUES(?, ?, ?, ?, ?, 'queued', ?)")
+          .bind_text(1, job.label)
+          .bind_text(2, job.owner)
+          .bind(3, job.spec)
+          .bind(4, static_cast<std::int64_t>(job.iterations_total))
+          .bind(5, static_cast<std::int64_t>(job.keep_after_disconnect ? 1 : 0))
+          .bind(6, unix_now_s())
+          .run();
+      const auto id = static_cast<std::uint64_t>(sqlite3_last_insert_rowid(db));
+      add_event(db, id, "queued", "accepted from " + job.owner);
+      transaction.commit();
+      outcome->set_value(id);
+    } catch (...) {
+      outcome->set_exception(std::current_exception());
+      throw;
+    }
+  };
+  if (!enqueue(std::move(write))) {
+    throw StoreError("job store " + file_.string() + ": too many writes waiting (" + std::to_string(max_pending_) +
+                     "); the disk is too slow or stuck");
+  }
+  if (result.wait_for(timeout) != std::future_status::ready) {
+    throw StoreError("job store " + file_.string() + ": the job was not written within " +
+                     std::to_string(timeout.count()) + " ms (the disk is too slow or stuck)");
+  }
+  try {
+    return result.get();
+  } catch (const std::exception& problem) {
+    throw StoreError("job store " + file_.string() + ": " + problem.what());
+  }
+}
+
+void JobStore::started(std::uint64_t id, std::string result_header, Then then) {
+  Write write;
+  write.what = "the start of job " + std::to_string(id);
+  write.then = std::move(then);
+  write.apply = [id, header = std::move(result_header)](sqlite3* db) {
+    Transaction transaction(db);
+    Statement(db, "UPDATE jobs SET state = 'running', result_header = ? WHERE id = ?")
+        .bind(1, header)
+        .bind(2, static_cast<std::int64_t>(id))
+        .run();
+    add_event(db, id, "running", "");
+    transaction.commit();
+  };
+  enqueue(std::move(write));
+}
+
+void JobStore::iteration(std::uint64_t id, std::uint32_t iteration, std::string metrics, Then then) {
+  Write write;
+  write.what = "iteration " + std::to_string(iteration) + " of job " + std::to_string(id);
+  write.then = std::move(then);
+  write.apply = [id, iteration, metrics = std::move(metrics)](sqlite3* db) {
+    Statement(db, "INSERT OR REPLACE INTO iterations(job_id, iteration, metrics) VALUES(?, ?, ?)")
+        .bind(1, static_cast<std::int64_t>(id))
+        .bind(2, static_cast<std::int64_t>(iteration))
+        .bind(3, metrics)
+        .run();
+  };
+  enqueue(std::move(write));
+}
+
+void JobStore::ended(std::uint64_t id, const std::string& state, const std::string& error, std::string finished,
+                     Then then) {
+  Write write;
+  write.what = "the end of job " + std::to_string(id);
+  write.then = std::move(then);
+  write.apply = [this, id, state, error, finished = std::move(finished)](sqlite3* db) {
+    {
+      Transaction transaction(db);
+      Statement(db, "UPDATE jobs SET state = ?, error = ?, ended_unix_s = ?, finished = ? WHERE id = ?")
+          .bind_text(1, state)
+          .bind_text(2, error)
+          .bind(3, unix_now_s())
+          .bind(4, finished)
+          .bind(5, static_cast<std::int64_t>(id))
+          .run();
+      add_event(db, id, state, error);
+      transaction.commit();
+    }
+    prune(db);
+  };
+  enqueue(std::move(write));
+}
+
+std::vector<StoredJob> JobStore::list(const JobFilter& filter) {
+  std::lock_guard lock(reader_mutex_);
+  Statement query(reader_db_, (std::string("SELECT ") + kJobColumns +
+                               " FROM jobs WHERE (?1 = '' OR state = ?1) AND (?2 = '' OR instr(label, ?2) > 0)"
+                               " AND accepted_unix_s >= ?3 ORDER BY id DESC LIMIT ?4")
+                                  .c_str());
+  query.bind_text(1, filter.state).bind_text(2, filter.label_contains).bind(3, filter.since_unix_s);
+  query.bind(4, static_cast<std::int64_t>(filter.limit));
+  std::vector<StoredJob> jobs;
+  while (query.step()) {
+    jobs.push_back(read_job_columns(query));
+    jobs.back().spec.clear();
+    jobs.back().finished.clear();
+    jobs.back().result_header.clear();
+  }
+  return jobs;
+}
+
+std::string JobStore::problem() const {
+  std::lock_guard lock(mutex_);
+  return problem_;
+}
+
+std::uint64_t JobStore::dropped_writes() const {
+  std::lock_guard lock(mutex_);
+  return dropped_;
+}
+
+std::uint64_t JobStore::failed_writes() const {
+  std::lock_guard lock(mutex_);
+  return failed_;
+}
+
+void JobStore::flush() {
+  std::unique_lock lock(mutex_);
+  idle_.wait(lock, [this] { return pending_.empty() && !busy_; });
+}
+
+bool JobStore::enqueue(Write write) {
+  {
+    std::lock_guard lock(mutex_);
+    if (pending_.size() >= max_pending_) {
+      ++dropped_;
+      problem_ = "too many writes waiting (" + std::to_string(max_pending_) + "): " + write.what + " was dropped";
+      spdlog::error("job store {}: {}", file_.string(), problem_);
+    } else {
+      pending_.push_back(std::move(write));
+      wake_.notify_one();
+      return true;
+    }
+  }
+  // Dropped: its follower still runs, so no client waits for a write that never comes.
+  if (write.then) write.then();
+  return false;
+}
+
+void JobStore::write_loop() {
+  std::unique_lock lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [this] { return stopping_ || !pending_.empty(); });
+    if (pending_.empty()) return;  // stopping, every queued write done
+    Write write = std::move(pending_.front());
+    pending_.pop_front();
+    busy_ = true;
+    lock.unlock();
+    apply(write);
+    lock.lock();
+    busy_ = false;
+    if (pending_.empty()) idle_.notify_all();
+  }
+}
+
+void JobStore::apply(Write& write) {
+  std::string failure;
+  try {
+    write.apply(writer_db_);
+  } catch (const std::exception& problem) {
+    failure = problem.what();
+  }
+  {
+    std::lock_guard lock(mutex_);
+    if (failure.empty()) {
+      problem_.clear();
+    } else {
+      ++failed_;
+      problem_ = failure;
+    }
+  }
+  if (!failure.empty()) spdlog::error("job store {}: {} not written: {}", file_.string(), write.what, failure);
+  if (write.then) write.then();
+}
+
+void JobStore::prune(sqlite3* db) {
+  // Ended jobs beyond the newest keep_jobs, or ended longer ago than keep_for.
+  const double oldest = unix_now_s() - std::chrono::duration<double>(retention_.keep_for).count();
+  Transaction transaction(db);
+  Statement(db,
+            "CREATE TEMP TABLE IF NOT EXISTS doomed(id INTEGER PRIMARY KEY);")
+      .run();
+  execute(db, "DELETE FROM temp.doomed");
+  Statement(db,
+            "INSERT OR IGNORE INTO temp.doomed SELECT id FROM jobs WHERE state NOT IN ('queued', 'running') AND "
+            "(ended_unix_s < ?1 OR id NOT IN (SELECT id FROM jobs WHERE state NOT IN ('queued', 'running') "
+            "ORDER BY id DESC LIMIT ?2))")
+      .bind(1, oldest)
+      .bind(2, static_cast<std::int64_t>(retention_.keep_jobs))
+      .run();
+  execute(db, "DELETE FROM iterations WHERE job_id IN (SELECT id FROM temp.doomed);"
+              "DELETE FROM job_events WHERE job_id IN (SELECT id FROM temp.doomed);"
+              "DELETE FROM jobs WHERE id IN (SELECT id FROM temp.doomed);");
+  transaction.commit();
+}
+
+}  // namespace netmc::store
