@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <sqlite3.h>
 
+#include <atomic>
 #include <future>
 #include <system_error>
 
@@ -249,9 +250,15 @@ JobStore::Contents JobStore::load(std::size_t history) {
 std::uint64_t JobStore::accept(const StoredJob& job, std::chrono::milliseconds timeout) {
   auto outcome = std::make_shared<std::promise<std::uint64_t>>();
   auto result = outcome->get_future();
+  // Set when the caller gave up waiting: the client heard "not accepted", so it must not be written.
+  auto abandoned = std::make_shared<std::atomic<bool>>(false);
   Write write;
   write.what = "a new job (" + job.label + ")";
-  write.apply = [job, outcome](sqlite3* db) {
+  write.apply = [job, outcome, abandoned](sqlite3* db) {
+    if (abandoned->load()) {
+      outcome->set_exception(std::make_exception_ptr(StoreError("abandoned")));
+      return;
+    }
     try {
       Transaction transaction(db);
       Statement(db,
@@ -278,6 +285,7 @@ std::uint64_t JobStore::accept(const StoredJob& job, std::chrono::milliseconds t
                      "); the disk is too slow or stuck");
   }
   if (result.wait_for(timeout) != std::future_status::ready) {
+    abandoned->store(true);
     throw StoreError("job store " + file_.string() + ": the job was not written within " +
                      std::to_string(timeout.count()) + " ms (the disk is too slow or stuck)");
   }
@@ -385,7 +393,8 @@ bool JobStore::enqueue(Write write) {
     if (pending_.size() >= max_pending_) {
       ++dropped_;
       problem_ = "too many writes waiting (" + std::to_string(max_pending_) + "): " + write.what + " was dropped";
-      spdlog::error("job store {}: {}", file_.string(), problem_);
+      // The first of a run of drops, then every thousandth: a stuck disk must not also flood the log.
+      if (dropped_ % 1000 == 1) spdlog::error("job store {}: {} ({} dropped so far)", file_.string(), problem_, dropped_);
     } else {
       pending_.push_back(std::move(write));
       wake_.notify_one();
