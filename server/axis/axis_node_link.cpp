@@ -361,6 +361,16 @@ void AxisNodeLink::report_drive(const std::string& axis, drive::PowerState state
   drive_reports_[axis] = {state, feedback.statusword, feedback.error_code};
 }
 
+bool AxisNodeLink::server_reads(const netmc::dds::JobControl& begin) const {
+  const AxisWriters& writers = writers_of(begin.axis());
+  return context_.matches_participants(writers.feedback, {begin.server()}) &&
+         context_.matches_participants(writers.events, {begin.server()});
+}
+
+std::string AxisNodeLink::server_does_not_read(const netmc::dds::JobControl& begin) {
+  return "server " + begin.server().substr(0, 32) + " does not read this node's feedback";
+}
+
 JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
   {
     std::lock_guard lock(mutex_);
@@ -369,13 +379,8 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
                                "); its operator resets it: netmc reset " + config_.node + " (or SIGUSR1 on its host)");
     }
   }
-  // The server must read this node's feedback before the first sample leaves: wait for its
-  // reader by identity (a dead server's reader, still counted by DDS, does not do).
-  const AxisWriters& writers = writers_of(begin.axis());
-  if (!context_.wait_for_participants(writers.feedback, {begin.server()}, std::chrono::seconds(5)) ||
-      !context_.wait_for_participants(writers.events, {begin.server()}, std::chrono::seconds(5))) {
-    throw std::runtime_error("server " + begin.server() + " does not read this node's feedback");
-  }
+  // The server must read this node's feedback before the first sample leaves.
+  if (!server_reads(begin)) throw std::runtime_error(server_does_not_read(begin));
   netmc::v1::JobSpec spec;
   if (!spec.ParseFromArray(begin.job_spec().data(), static_cast<int>(begin.job_spec().size()))) {
     throw std::invalid_argument("malformed job spec");

@@ -21,13 +21,15 @@ void LockstepAxisNode::serve(const std::atomic<bool>& stop) {
   while (!stop.load()) {
     reset_faults(link_.poll_fault_reset());
     while (auto control = link_.take_control()) handle(*control);
+    settle_starts();
     while (auto setpoint = link_.take_setpoint()) handle(*setpoint);
     if (std::chrono::steady_clock::now() - last_status >= kStatusPeriod) {
       publish_status();
       last_status = std::chrono::steady_clock::now();
     }
+    const auto wait = starts_.empty() ? std::chrono::milliseconds(100) : PendingJobStarts::kLookPeriod;
     eprosima::fastdds::dds::ConditionSeq active;
-    waitset.wait(active, eprosima::fastrtps::Duration_t(0, 100'000'000));
+    waitset.wait(active, eprosima::fastrtps::Duration_t(0, static_cast<std::uint32_t>(wait.count() * 1'000'000)));
   }
 }
 
@@ -84,6 +86,10 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
     return;
   }
   if (control.kind() == netmc::dds::CONTROL_PREPARE_ITERATION) return;  // realtime servers only
+  if (starts_.waiting(control.axis())) {
+    starts_.hold_back(control);
+    return;
+  }
   if (const std::string why = link_.admit(control); !why.empty()) {
     if (control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty()) {
       link_.refuse(control, netmc::dds::AXIS_REFUSED, why);
@@ -92,14 +98,14 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
   }
   JobAxis& axis = owned->second;
   if (control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty()) {
+    if (!link_.server_reads(control)) {  // handled again once it does
+      starts_.wait(control, std::chrono::steady_clock::now());
+      return;
+    }
     try {
       axis = link_.start_job(control);
     } catch (const std::exception& error) {
-      // A job this node cannot run must not take the node down: say so and stay ready.
-      axis = JobAxis{};
-      link_.release(control.axis(), control.server(), control.job_id());
-      link_.refuse(control, netmc::dds::AXIS_FAULT, error.what());
-      link_.publish_status(netmc::dds::NODE_FAULT, "job " + std::to_string(control.job_id()) + ": " + error.what());
+      refuse_start(control, error.what());
       return;
     }
     drives_[control.axis()] = axis.endpoint->supervised().shared_drive();
@@ -135,6 +141,27 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
   feedback.stale_setpoints(axis.endpoint->stale_setpoints());
   link_.publish(feedback);
+}
+
+void LockstepAxisNode::refuse_start(const netmc::dds::JobControl& control, const std::string& why) {
+  axes_.at(control.axis()) = JobAxis{};
+  link_.release(control.axis(), control.server(), control.job_id());
+  link_.refuse(control, netmc::dds::AXIS_FAULT, why);
+  link_.publish_status(netmc::dds::NODE_FAULT, "job " + std::to_string(control.job_id()) + ": " + why);
+}
+
+void LockstepAxisNode::settle_starts() {
+  if (starts_.empty()) return;
+  const auto settled = starts_.settle([this](const netmc::dds::JobControl& begin) { return link_.server_reads(begin); },
+                                      std::chrono::steady_clock::now());
+  for (const auto& start : settled) {
+    if (start.server_reads) {
+      handle(start.begin);
+    } else {
+      refuse_start(start.begin, AxisNodeLink::server_does_not_read(start.begin));
+    }
+    for (const auto& control : start.held_back) handle(control);
+  }
 }
 
 void LockstepAxisNode::handle(const netmc::dds::Setpoint& setpoint) {

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "server/axis/axis_node_link.hpp"
+#include "server/axis/pending_job_starts.hpp"
 
 namespace netmc::axis {
 
@@ -25,11 +26,16 @@ class LockstepAxisNode {
   void reset_faults(const std::vector<std::string>& axes);
   void report_fault(const std::string& axis_name, JobAxis& axis, const std::string& server, std::uint32_t iteration);
   void report_drive(const std::string& axis_name);
+  // A job this node cannot run: said, and the axis stays ready.
+  void refuse_start(const netmc::dds::JobControl& control, const std::string& why);
+  // The pending starts whose server reads now (started) or whose time is over (refused).
+  void settle_starts();
 
   AxisNodeLink link_;
   std::map<std::string, JobAxis> axes_;
   // Each axis's simulated drive of its last job: what its status shows between jobs.
   std::map<std::string, std::shared_ptr<drive::Drive>> drives_;
+  PendingJobStarts starts_;
 };
 
 }  // namespace netmc::axis

@@ -73,6 +73,7 @@ void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
     }
     while (auto setpoint = link_.take_setpoint()) handle(*setpoint);
     while (auto control = link_.take_control()) handle(*control);
+    settle_starts();
     if (now >= next_status) {
       publish_status();
       next_status = now + kStatusPeriod;
@@ -87,7 +88,7 @@ void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
 }
 
 RealtimeAxisNode::Clock::time_point RealtimeAxisNode::wake_time(Clock::time_point next_status) const {
-  auto wake = std::min(next_status, Clock::now() + kIdleWake);
+  auto wake = std::min(next_status, Clock::now() + (starts_.empty() ? kIdleWake : PendingJobStarts::kLookPeriod));
   for (const auto& [name, axis] : axes_) {
     if (sampling(axis)) wake = std::min(wake, axis.next_sample);
     if (axis.report_due) wake = std::min(wake, axis.report_at);
@@ -176,6 +177,10 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
     reset_faults({control.axis()});
     return;
   }
+  if (starts_.waiting(control.axis())) {
+    starts_.hold_back(control);
+    return;
+  }
   if (const std::string why = link_.admit(control); !why.empty()) {
     if ((control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION ||
          control.kind() == netmc::dds::CONTROL_PREPARE_ITERATION) &&
@@ -238,20 +243,42 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
 }
 
 bool RealtimeAxisNode::start_job(OwnedAxis& axis, const netmc::dds::JobControl& control) {
+  if (!link_.server_reads(control)) {
+    starts_.wait(control, Clock::now());
+    return false;
+  }
   try {
     static_cast<JobAxis&>(axis) = link_.start_job(control);
   } catch (const std::exception& error) {
-    // A job this node cannot run must not take the node down: say so and stay ready.
-    axis.endpoint.reset();
-    axis.phase = Phase::idle;
-    link_.release(control.axis(), control.server(), control.job_id());
-    link_.refuse(control, netmc::dds::AXIS_FAULT, error.what());
+    refuse_start(axis, control, error.what());
     return false;
   }
   axis.server = control.server();
   axis.drive = axis.endpoint->supervised().shared_drive();
   axis.phase = Phase::idle;
   return true;
+}
+
+void RealtimeAxisNode::refuse_start(OwnedAxis& axis, const netmc::dds::JobControl& control, const std::string& why) {
+  // A job this node cannot run must not take the node down: say so and stay ready.
+  axis.endpoint.reset();
+  axis.phase = Phase::idle;
+  link_.release(control.axis(), control.server(), control.job_id());
+  link_.refuse(control, netmc::dds::AXIS_FAULT, why);
+}
+
+void RealtimeAxisNode::settle_starts() {
+  if (starts_.empty()) return;
+  const auto settled = starts_.settle([this](const netmc::dds::JobControl& begin) { return link_.server_reads(begin); },
+                                      Clock::now());
+  for (const auto& start : settled) {
+    if (start.server_reads) {
+      handle(start.begin);
+    } else {
+      refuse_start(axes_.at(start.begin.axis()), start.begin, AxisNodeLink::server_does_not_read(start.begin));
+    }
+    for (const auto& control : start.held_back) handle(control);
+  }
 }
 
 void RealtimeAxisNode::prepare(const std::string& axis_name, OwnedAxis& axis, const netmc::dds::JobControl& control) {

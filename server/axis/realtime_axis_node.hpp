@@ -26,6 +26,7 @@
 
 #include "dds_types.h"
 #include "server/axis/axis_node_link.hpp"
+#include "server/axis/pending_job_starts.hpp"
 #include "server/drive/point_to_point_move.hpp"
 
 namespace netmc::axis {
@@ -92,8 +93,12 @@ class RealtimeAxisNode {
 
   void handle(const netmc::dds::JobControl& control);
   void handle(const netmc::dds::Setpoint& setpoint);
-  // The job from the message that carries its spec; false (refused, said) if it cannot run.
+  // The job from the message that carries its spec; false if it cannot run (refused, said) or
+  // its server does not read the axis yet (pending: handled again once it does).
   bool start_job(OwnedAxis& axis, const netmc::dds::JobControl& control);
+  void refuse_start(OwnedAxis& axis, const netmc::dds::JobControl& control, const std::string& why);
+  // The pending starts whose server reads now (started) or whose time is over (refused).
+  void settle_starts();
   void prepare(const std::string& axis_name, OwnedAxis& axis, const netmc::dds::JobControl& control);
   void begin(OwnedAxis& axis, const netmc::dds::JobControl& control);
   void end_job(const std::string& axis_name, OwnedAxis& axis, const netmc::dds::JobControl& control);
@@ -126,6 +131,7 @@ class RealtimeAxisNode {
   AxisNodeLink link_;
   std::chrono::milliseconds watchdog_;
   std::map<std::string, OwnedAxis> axes_;
+  PendingJobStarts starts_;
 };
 
 }  // namespace netmc::axis

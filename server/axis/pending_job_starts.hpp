@@ -1,0 +1,57 @@
+#pragma once
+// Jobs whose start waits for their server. A node sends an axis's feedback only once the job's
+// server reads it; that wait is looked at by the node's loop on each pass, never slept in, so a
+// participant that begins a job and never reads (forged, or a server that died) holds up nothing
+// but the axis it named: the node's other axes keep sampling and its watchdog keeps watching.
+// The axis's later job control waits behind its start, in order.
+
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dds_types.h"
+
+namespace netmc::axis {
+
+class PendingJobStarts {
+ public:
+  using Clock = std::chrono::steady_clock;
+  // How long a server has to read the axis's feedback and events once it began a job.
+  static constexpr std::chrono::milliseconds kServerReadTimeout{5000};
+  // How often the loop looks while a start waits.
+  static constexpr std::chrono::milliseconds kLookPeriod{2};
+  // Later control kept per waiting axis; beyond it the oldest is dropped (a flood of control
+  // for one axis cannot grow the node).
+  static constexpr std::size_t kMaxHeldBack = 32;
+
+  // The start `begin` waits until its server reads; a start the axis was waiting for is given
+  // up (returned: its server is told).
+  std::optional<netmc::dds::JobControl> wait(const netmc::dds::JobControl& begin, Clock::time_point now);
+  bool waiting(const std::string& axis) const { return waiting_.count(axis) > 0; }
+  bool empty() const { return waiting_.empty(); }
+  // Control for a waiting axis: replayed after its start is settled.
+  void hold_back(const netmc::dds::JobControl& control);
+
+  struct Settled {
+    netmc::dds::JobControl begin;
+    bool server_reads = false;  // else: its time is over
+    std::vector<netmc::dds::JobControl> held_back;
+  };
+  // The starts whose server reads now, or whose time is over; the others keep waiting.
+  std::vector<Settled> settle(const std::function<bool(const netmc::dds::JobControl&)>& server_reads,
+                              Clock::time_point now);
+
+ private:
+  struct Waiting {
+    netmc::dds::JobControl begin;
+    Clock::time_point deadline;
+    std::vector<netmc::dds::JobControl> held_back;
+  };
+  std::map<std::string, Waiting> waiting_;  // by axis
+};
+
+}  // namespace netmc::axis
