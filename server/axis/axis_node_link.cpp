@@ -35,12 +35,10 @@ AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
       // goes to every node, which drops the others' on the DDS thread.
       control_(context.reader(context.topic<netmc::dds::JobControlPubSubType>(dds::kJobControlTopic),
                               dds::Delivery::control)),
-      setpoints_(context.reader(
-          context.topic<netmc::dds::SetpointPubSubType>(realtime(config_) ? dds::kRealtimeSetpointTopic
-                                                                          : dds::kLockstepSetpointTopic),
-          realtime(config_) ? dds::Delivery::stream : dds::Delivery::exchange, axis_partitions(config_.axes))),
       probes_(context.reader(context.topic<netmc::dds::ClockProbePubSubType>(dds::kClockProbeTopic),
-                             dds::Delivery::stream)) {
+                             dds::Delivery::stream)),
+      setpoint_intake_([this](const eprosima::fastrtps::rtps::GuidPrefix_t& sender,
+                              const netmc::dds::Setpoint& setpoint) { return from_holder_of_job(sender, setpoint); }) {
   auto* feedback = context.topic<netmc::dds::FeedbackPubSubType>(
       realtime(config_) ? dds::kRealtimeFeedbackTopic : dds::kLockstepFeedbackTopic);
   auto* events = context.topic<netmc::dds::AxisEventPubSubType>(dds::kAxisEventTopic);
@@ -58,10 +56,16 @@ AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
                                                        drive::statusword::remote),
                             0};
   }
+  setpoint_reader_ = context.reader(
+      context.topic<netmc::dds::SetpointPubSubType>(realtime(config_) ? dds::kRealtimeSetpointTopic
+                                                                      : dds::kLockstepSetpointTopic),
+      realtime(config_) ? dds::Delivery::stream : dds::Delivery::exchange, axis_partitions(config_.axes),
+      &setpoint_intake_);
   probe_thread_ = std::thread([this] { answer_probes(); });
 }
 
 AxisNodeLink::~AxisNodeLink() {
+  context_.remove_reader(setpoint_reader_);  // no more calls into setpoint_intake_
   stop_.store(true);
   probe_thread_.join();
   if (refused_) return;  // it never served
@@ -165,11 +169,12 @@ bool AxisNodeLink::reset_request(const netmc::dds::JobControl& control) const {
   return control.kind() == netmc::dds::CONTROL_FAULT_RESET && hosts(control.axis());
 }
 
-std::optional<netmc::dds::Setpoint> AxisNodeLink::take_setpoint() {
-  while (auto setpoint = setpoints_.try_take()) {
-    if (authentic(setpoints_.last_sender(), setpoint->server(), "setpoint", setpoint->axis())) return setpoint;
-  }
-  return std::nullopt;
+bool AxisNodeLink::from_holder_of_job(const eprosima::fastrtps::rtps::GuidPrefix_t& sender,
+                                      const netmc::dds::Setpoint& setpoint) {
+  if (!authentic(sender, setpoint.server(), "setpoint", setpoint.axis())) return false;
+  std::lock_guard lock(mutex_);
+  const auto it = holds_.find(setpoint.axis());
+  return it != holds_.end() && it->second.job_id == setpoint.job_id() && it->second.server == setpoint.server();
 }
 
 bool AxisNodeLink::hosts(const std::string& axis) const {
@@ -209,6 +214,9 @@ void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::stri
     status.health(faults.empty() ? health : netmc::dds::NODE_FAULT);
     std::string said = faults.empty() ? detail : faults + "; reset with netmc reset (or SIGUSR1 on the axis's host)";
     if (const auto forged = forged_.load(); forged > 0) said += "; " + std::to_string(forged) + " forged samples dropped";
+    if (const auto dropped = setpoint_intake_.dropped(); dropped > 0) {
+      said += "; " + std::to_string(dropped) + " setpoints of no job here dropped";
+    }
     status.detail(said.substr(0, 255));
     for (const auto& axis : config_.axes) {
       netmc::dds::AxisDriveStatus entry;

@@ -16,7 +16,7 @@ void LockstepAxisNode::serve(const std::atomic<bool>& stop) {
   link_.publish_status(netmc::dds::NODE_IDLE, "ready");
   eprosima::fastdds::dds::WaitSet waitset;
   waitset.attach_condition(link_.control().condition());
-  waitset.attach_condition(link_.setpoints().condition());
+  waitset.attach_condition(link_.setpoint_arrived());
   auto last_status = std::chrono::steady_clock::now();
   while (!stop.load()) {
     reset_faults(link_.poll_fault_reset());

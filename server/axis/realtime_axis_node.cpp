@@ -51,7 +51,7 @@ void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
   realtime::tighten_timer_slack();
   eprosima::fastdds::dds::WaitSet waitset;
   waitset.attach_condition(link_.control().condition());
-  waitset.attach_condition(link_.setpoints().condition());
+  waitset.attach_condition(link_.setpoint_arrived());
   auto next_status = Clock::now();
   while (!stop.load()) {
     reset_faults(link_.poll_fault_reset());

@@ -189,6 +189,10 @@ bool sent_by(const eprosima::fastrtps::rtps::GuidPrefix_t& sender, const std::st
 // get_matched_subscriptions).
 class DdsContext::MatchTracker : public DataWriterListener, public DataReaderListener {
  public:
+  explicit MatchTracker(DataReaderListener* on_data = nullptr) : on_data_(on_data) {}
+  void on_data_available(DataReader* reader) override {
+    if (on_data_) on_data_->on_data_available(reader);
+  }
   void on_publication_matched(DataWriter*, const PublicationMatchedStatus& status) override {
     count(status.last_subscription_handle, status.current_count_change);
   }
@@ -214,6 +218,7 @@ class DdsContext::MatchTracker : public DataWriterListener, public DataReaderLis
     }
   }
 
+  DataReaderListener* on_data_;
   mutable std::mutex mutex_;
   std::map<std::string, int> endpoints_;
 };
@@ -423,7 +428,8 @@ DataWriter* DdsContext::writer(Topic* topic, Delivery delivery, const std::strin
   return created;
 }
 
-DataReader* DdsContext::reader(Topic* topic, Delivery delivery, const std::vector<std::string>& partitions) {
+DataReader* DdsContext::reader(Topic* topic, Delivery delivery, const std::vector<std::string>& partitions,
+                               DataReaderListener* on_data) {
   std::lock_guard lock(entities_mutex_);
   Subscriber* subscriber = subscriber_;
   if (!partitions.empty()) {
@@ -439,8 +445,10 @@ DataReader* DdsContext::reader(Topic* topic, Delivery delivery, const std::vecto
     qos = DATAREADER_QOS_DEFAULT;
     apply(qos, delivery);
   }
-  auto tracker = std::make_unique<MatchTracker>();
-  auto* created = subscriber->create_datareader(topic, qos, tracker.get(), StatusMask::subscription_matched());
+  auto tracker = std::make_unique<MatchTracker>(on_data);
+  StatusMask mask = StatusMask::subscription_matched();
+  if (on_data) mask << StatusMask::data_available();
+  auto* created = subscriber->create_datareader(topic, qos, tracker.get(), mask);
   if (!created) throw std::runtime_error("dds: cannot create a reader for " + topic->get_name());
   trackers_[created] = std::move(tracker);
   return created;

@@ -16,6 +16,7 @@
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
@@ -89,8 +90,12 @@ class DdsContext {
   // setpoints (partition_of_axis).
   eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* topic, Delivery delivery,
                                              const std::string& partition = "");
+  // With `on_data`, the reader's samples are announced to it on Fast DDS's receive thread
+  // (on_data_available), which must take them: a reader that filters there keeps what it drops
+  // out of its history. `on_data` outlives the reader (remove_reader).
   eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::Topic* topic, Delivery delivery,
-                                             const std::vector<std::string>& partitions = {});
+                                             const std::vector<std::string>& partitions = {},
+                                             eprosima::fastdds::dds::DataReaderListener* on_data = nullptr);
 
   // Deletes a reader made by reader() without partitions that is no longer needed (its samples,
   // its matches); partitioned readers are kept for the process's life (JobService).
