@@ -7,6 +7,12 @@
 //           and that axis node's name: setpoints with sequence number 2^64-2 and NaN commands
 //           for the next cycle, fake feedback, a fake fault, a fake END_JOB, and node statuses
 //           that spoof the node (its participant, its name, its axes). Prints what it sent.
+//   begin   acts as a server that never reads: BEGIN_ITERATION of its own job to an idle --axis
+//           every --every seconds, with no feedback or event reader, so the node can never
+//           start the job (its server must read the axis's feedback first).
+//   flood   --count random setpoints as fast as it can to the partitions of --axis (comma-
+//           separated axes), on the setpoint topic of the node's clock: random server (its own
+//           identity, a made-up one), job, iteration, cycle and command. Prints the rate.
 // Without DDS Security every participant on the domain can do this; what netmc promises is
 // that none of it moves an axis of the real server's job or changes its result.
 
@@ -19,6 +25,7 @@
 #include <csignal>
 #include <limits>
 #include <optional>
+#include <random>
 #include <thread>
 
 #include "dds_typesPubSubTypes.h"
@@ -43,6 +50,8 @@ struct Options {
   double command = 1e30;
   bool nan = false;
   double seconds = 30.0;
+  double every_s = 1.0;
+  std::size_t count = 300000;
 };
 
 // The status of the node hosting `axis` (its participant, plant, clock), once it is discovered.
@@ -54,6 +63,21 @@ std::optional<nd::NodeStatus> find_node(nd::SampleReader<nd::NodeStatus>& status
     }
   }
   return std::nullopt;
+}
+
+// The job spec the rogue's own jobs carry: a small circle on the axis and one it makes up.
+std::vector<std::uint8_t> rogue_job_spec(const nd::NodeStatus& node, const std::string& axis, const std::string& clock) {
+  netmc::v1::JobSpec spec;
+  spec.set_plant(node.plant());
+  spec.set_clock(clock);
+  spec.add_axes(axis);
+  spec.add_axes(axis + "-other");
+  auto& circle = *spec.mutable_trajectory()->mutable_circle();
+  circle.set_radius_m(0.01);
+  circle.set_period_s(8.0);
+  netmc::job::apply_defaults(spec);
+  const std::string bytes = spec.SerializeAsString();
+  return {bytes.begin(), bytes.end()};
 }
 
 int drive(const Options& options) {
@@ -82,16 +106,6 @@ int drive(const Options& options) {
     fmt::print("rogue: node {} does not read our job control and setpoints\n", node->node());
     return 1;
   }
-  netmc::v1::JobSpec spec;
-  spec.set_plant(node->plant());
-  spec.set_clock(options.clock);
-  spec.add_axes(options.axis);
-  spec.add_axes(options.axis + "-other");
-  auto& circle = *spec.mutable_trajectory()->mutable_circle();
-  circle.set_radius_m(0.01);
-  circle.set_period_s(8.0);
-  netmc::job::apply_defaults(spec);
-  const std::string bytes = spec.SerializeAsString();
   const std::uint64_t job_id = 4242;
   const double start_s = realtime ? nd::time_base_now_s(nd::parse_time_base(node->time_base())) + 0.3 : 0.0;
   nd::JobControl begin;
@@ -102,7 +116,7 @@ int drive(const Options& options) {
   begin.kind(nd::CONTROL_BEGIN_ITERATION);
   begin.start_position_m(0.0);
   begin.start_time_s(start_s);
-  begin.job_spec(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+  begin.job_spec(rogue_job_spec(*node, options.axis, options.clock));
   nd::write_checked(control, &begin);
   fmt::print("rogue: sent BEGIN_ITERATION of its own job {} to axis {} (node {})\n", job_id, options.axis,
              node->node());
@@ -146,6 +160,100 @@ int drive(const Options& options) {
   }
   fmt::print("rogue: axis {}: {} commands of {} sent, {} samples back, largest |position| {:.3g} m, event {}\n",
              options.axis, sent, command, samples, max_position, event_text);
+  return 0;
+}
+
+int begin_without_reader(const Options& options) {
+  nd::DdsContext context(options.dds);
+  nd::SampleReader<nd::NodeStatus> statuses(
+      context.reader(context.topic<nd::NodeStatusPubSubType>(nd::kNodeStatusTopic), nd::Delivery::status));
+  auto* control = context.writer(context.topic<nd::JobControlPubSubType>(nd::kJobControlTopic), nd::Delivery::control);
+  const auto node = find_node(statuses, options.axis, Clock::now() + std::chrono::seconds(10));
+  if (!node) {
+    fmt::print("rogue: no node hosts axis {}\n", options.axis);
+    return 1;
+  }
+  if (!context.wait_for_participants(control, {node->participant()}, std::chrono::seconds(10))) {
+    fmt::print("rogue: node {} does not read our job control\n", node->node());
+    return 1;
+  }
+  nd::JobControl begin;
+  begin.axis(options.axis);
+  begin.server(context.identity());
+  begin.iteration(1);
+  begin.kind(nd::CONTROL_BEGIN_ITERATION);
+  begin.start_position_m(0.0);
+  begin.job_spec(rogue_job_spec(*node, options.axis, node->clock()));
+  fmt::print("rogue: sending BEGIN_ITERATION to axis {} (node {}) every {} s, reading nothing\n", options.axis,
+             node->node(), options.every_s);
+  std::fflush(stdout);
+  std::size_t sent = 0;
+  const auto end = Clock::now() + std::chrono::milliseconds(static_cast<long>(options.seconds * 1e3));
+  while (Clock::now() < end && !g_stop.load()) {
+    begin.job_id(5000 + sent);
+    begin.start_time_s(nd::time_base_now_s(nd::parse_time_base(node->time_base())) + 0.3);
+    nd::write_checked(control, &begin);
+    ++sent;
+    const auto next = Clock::now() + std::chrono::milliseconds(static_cast<long>(options.every_s * 1e3));
+    while (Clock::now() < next && !g_stop.load()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  fmt::print("rogue: {} BEGIN_ITERATION sent to axis {}\n", sent, options.axis);
+  return 0;
+}
+
+int flood(const Options& options) {
+  nd::DdsContext context(options.dds);
+  std::vector<std::string> axes;
+  for (std::size_t from = 0; from <= options.axis.size();) {
+    const auto comma = std::min(options.axis.find(',', from), options.axis.size());
+    axes.push_back(options.axis.substr(from, comma - from));
+    from = comma + 1;
+  }
+  nd::SampleReader<nd::NodeStatus> statuses(
+      context.reader(context.topic<nd::NodeStatusPubSubType>(nd::kNodeStatusTopic), nd::Delivery::status));
+  const auto node = find_node(statuses, axes.front(), Clock::now() + std::chrono::seconds(10));
+  if (!node) {
+    fmt::print("rogue: no node hosts axis {}\n", axes.front());
+    return 1;
+  }
+  // One writer per axis partition, on the topic of the node's clock: what a server's job uses.
+  const bool realtime = node->clock() == "realtime";
+  std::vector<std::pair<std::string, eprosima::fastdds::dds::DataWriter*>> writers;
+  for (const auto& axis : axes) {
+    writers.emplace_back(axis, context.writer(context.topic<nd::SetpointPubSubType>(
+                                                  realtime ? nd::kRealtimeSetpointTopic : nd::kLockstepSetpointTopic),
+                                              realtime ? nd::Delivery::stream : nd::Delivery::exchange,
+                                              nd::partition_of_axis(axis)));
+  }
+  for (const auto& [axis, writer] : writers) {
+    if (!context.wait_for_participants(writer, {node->participant()}, std::chrono::seconds(10))) {
+      fmt::print("rogue: node {} does not read our setpoints for axis {}\n", node->node(), axis);
+      return 1;
+    }
+  }
+  fmt::print("rogue: flooding axes {} (node {}) with {} random setpoints\n", options.axis, node->node(),
+             options.count);
+  std::fflush(stdout);
+  std::mt19937_64 random(42);
+  std::uniform_real_distribution<double> command(-1e3, 1e3);
+  std::uniform_int_distribution<std::uint64_t> small(0, 7), cycle(0, 5000), any;
+  const auto started = Clock::now();
+  std::size_t sent = 0;
+  for (; sent < options.count && !g_stop.load(); ++sent) {
+    const auto& [axis, writer] = writers[sent % writers.size()];
+    nd::Setpoint s;
+    s.axis(axis);
+    s.server(sent % 2 == 0 ? context.identity() : fmt::format("{:024x}", any(random) >> 32));
+    s.job_id(small(random));
+    s.iteration(static_cast<std::uint32_t>(small(random)));
+    s.cycle(cycle(random));
+    s.command(command(random));
+    s.send_time_s(0.0);
+    nd::write_checked(writer, &s);
+  }
+  const double took_s = std::chrono::duration<double>(Clock::now() - started).count();
+  fmt::print("rogue: {} random setpoints sent in {:.2f} s ({:.0f} per second)\n", sent, took_s,
+             static_cast<double>(sent) / took_s);
   return 0;
 }
 
@@ -313,7 +421,9 @@ int main(int argc, char** argv) {
   options.dds.transport = nd::Transport::udp;
   options.dds.name = "rogue";
   for (auto* command : {app.add_subcommand("drive", "Start a job of its own on an idle axis and drive it"),
-                        app.add_subcommand("hijack", "Speak for a running job's server and node")}) {
+                        app.add_subcommand("hijack", "Speak for a running job's server and node"),
+                        app.add_subcommand("begin", "Begin jobs of its own on an idle axis, reading nothing"),
+                        app.add_subcommand("flood", "Send random setpoints to axes as fast as it can")}) {
     command->add_option("--domain", options.dds.domain_id)->check(CLI::Range(0, 230));
     command->add_option("--axis", options.axis)->required();
     command->add_option("--seconds", options.seconds, "Give up after this long");
@@ -322,11 +432,18 @@ int main(int argc, char** argv) {
   drive_command->add_option("--clock", options.clock)->check(CLI::IsMember({"lockstep", "realtime"}));
   drive_command->add_option("--command", options.command, "The command to send every cycle");
   drive_command->add_flag("--nan", options.nan, "Send NaN commands");
+  app.get_subcommand("begin")->add_option("--every", options.every_s, "Seconds between two begins")
+      ->check(CLI::Range(0.001, 60.0));
+  app.get_subcommand("flood")->add_option("--count", options.count, "Setpoints to send")
+      ->check(CLI::Range(1, 100000000));
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   try {
-    return app.got_subcommand("drive") ? drive(options) : hijack(options);
+    if (app.got_subcommand("drive")) return drive(options);
+    if (app.got_subcommand("begin")) return begin_without_reader(options);
+    if (app.got_subcommand("flood")) return flood(options);
+    return hijack(options);
   } catch (const std::exception& error) {
     fmt::print("rogue: error: {}\n", error.what());
     return 1;

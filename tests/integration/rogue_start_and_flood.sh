@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# Two attacks of a rogue DDS participant (tests/integration/rogue_participant.cpp) on an axis
+# node's only thread, without DDS Security, on loopback:
+#   1. begin: BEGIN_ITERATION of a job of its own, every second, to an idle axis (pz) of the node
+#      that runs a realtime job on its other two axes (px, py), with no reader of the node's
+#      feedback: the node cannot start that job, and waiting for its server to read must not
+#      stop the node's loop. The realtime job completes, the node's watchdog never quick-stops,
+#      the server never loses the node, deadline misses stay under a generous 20 %, and e_max is
+#      within 0.5-2 times netmc sim's; the forged jobs are refused.
+#   2. flood: 300 k random setpoints (random server, job, iteration, cycle, command) to the
+#      partitions of x and y while paper 001's adrc+ilccc lockstep job (2 iterations) runs on
+#      them: the job's JSON equals netmc sim's byte for byte, and the node's resident memory
+#      (VmRSS) grows by less than 64 MiB.
+# Usage: rogue_start_and_flood.sh BUILD_DIR
+set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
+build=$1
+source "$(dirname "$0")/lib.sh"
+netmc=$build/client/netmc
+axis_bin=$build/server/axis/netmc-axis
+rogue=$build/tests/integration/netmc_rogue_participant
+dds=(--domain "$domain" --transport udp)
+
+start pair "$axis_bin" --node pair --axes px,py,pz --clock realtime "${dds[@]}"
+pair_pid=${pids[-1]}
+start lxy "$axis_bin" --node lxy --axes x,y "${dds[@]}"
+lxy_pid=${pids[-1]}
+start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 "${dds[@]}"
+port=$(server_port 127.0.0.1)
+for node in pair lxy; do
+  for _ in $(seq 100); do grep -q serving "$tmp/$node.log" && break; sleep 0.1; done
+done
+value() { sed -n "s/.*\"$1\": \([0-9.eE+-]*\).*/\1/p" "$2" | head -n 1; }
+sum() { sed -n "s/.*\"$1\": \([0-9]*\).*/\1/p" "$2" | awk '{ s += $1 } END { print s + 0 }'; }
+
+# 1. Forged begins on pz while px and py run a realtime job.
+start rogue-begin "$rogue" begin --axis pz --every 1 --seconds 120 --domain "$domain"
+rogue_pid=${pids[-1]}
+for _ in $(seq 100); do grep -q "reading nothing" "$tmp/rogue-begin.log" && break; sleep 0.1; done
+rt=(--controller adrc --sample-period 1ms --duration 3s --iterations 2 --delay none)
+"$netmc" run --server "127.0.0.1:$port" --quiet --clock realtime --axes px,py "${rt[@]}" --json "$tmp/rt.json" \
+  >"$tmp/rt.out" 2>&1 || { echo "FAIL: the realtime job failed under forged begins"; cat "$tmp/rt.out"; cat "$tmp/pair.log"; exit 1; }
+kill -TERM "$rogue_pid"
+wait "$rogue_pid" || true
+cat "$tmp/rogue-begin.log"
+refused=$(grep -c "refused: server [0-9a-f]* does not read this node's feedback" "$tmp/pair.log" || true)
+[ "$refused" -ge 1 ] || { echo "FAIL: no forged begin reached node pair"; cat "$tmp/pair.log"; exit 1; }
+if grep -q "quick stop" "$tmp/pair.log"; then
+  echo "FAIL: the node's watchdog quick-stopped an axis of the job"; grep "quick stop" "$tmp/pair.log"; exit 1
+fi
+if grep -q "node pair lost" "$tmp/server.log"; then echo "FAIL: the server lost node pair"; exit 1; fi
+misses=$(sum deadline_misses "$tmp/rt.json")
+[ "$misses" -lt 1200 ] || { echo "FAIL: $misses deadline misses of 6002 cycles (a storm)"; exit 1; }
+"$netmc" sim --quiet "${rt[@]}" --json "$tmp/rt-sim.json" >/dev/null
+sent=$(sed -n 's/^rogue: \([0-9]*\) BEGIN_ITERATION sent.*/\1/p' "$tmp/rogue-begin.log")
+awk -v run="$(value e_max_m "$tmp/rt.json")" -v sim="$(value e_max_m "$tmp/rt-sim.json")" -v misses="$misses" \
+    -v refused="$refused" -v sent="$sent" 'BEGIN {
+  printf "realtime job beside %d forged begins (%d refused by its end, the others waiting behind): e_max %.4f mm (netmc sim %.4f mm), %d deadline misses of 6002 cycles, no quick stop, node kept\n", sent, refused, run * 1e3, sim * 1e3, misses
+  exit (run <= 2 * sim && run >= 0.5 * sim) ? 0 : 1
+}'
+
+# 2. A flood of random setpoints during a lockstep job.
+rss_kib() { sed -n 's/^VmRSS:[[:space:]]*\([0-9]*\) kB/\1/p' "/proc/$1/status"; }
+study=(--controller adrc+ilccc --iterations 2)
+"$netmc" run --server "127.0.0.1:$port" --quiet "${study[@]}" --json "$tmp/warm.json" >/dev/null
+rss_before=$(rss_kib "$lxy_pid")
+start rogue-flood "$rogue" flood --axis x,y --count 300000 --seconds 120 --domain "$domain"
+flood_pid=${pids[-1]}
+for _ in $(seq 100); do grep -q "flooding" "$tmp/rogue-flood.log" && break; sleep 0.1; done
+"$netmc" run --server "127.0.0.1:$port" --quiet "${study[@]}" --json "$tmp/run.json" >"$tmp/run.out" 2>&1 ||
+  { echo "FAIL: the lockstep job failed under the flood"; cat "$tmp/run.out" "$tmp/rogue-flood.log"; tail -n 5 "$tmp/lxy.log"; exit 1; }
+flood_running_at_end=no
+kill -0 "$flood_pid" 2>/dev/null && flood_running_at_end=yes
+wait "$flood_pid" || true
+cat "$tmp/rogue-flood.log"
+grep -q "300000 random setpoints sent" "$tmp/rogue-flood.log" || { echo "FAIL: the flood did not happen"; exit 1; }
+rss_after=$(rss_kib "$lxy_pid")
+"$netmc" sim --quiet "${study[@]}" --json "$tmp/sim.json" >/dev/null
+same_json "$tmp/sim.json" "$tmp/run.json" "the lockstep job under a flood of random setpoints"
+grep -q "dropped a forged setpoint for axis [xy]" "$tmp/lxy.log" || { echo "FAIL: the flood never reached node lxy"; exit 1; }
+echo "flood still sending when the job ended: $flood_running_at_end"
+echo "node lxy VmRSS: $rss_before KiB before the flood, $rss_after KiB after it"
+[ $((rss_after - rss_before)) -lt 65536 ] || { echo "FAIL: node lxy grew by more than 64 MiB under the flood"; exit 1; }
+kill -0 "$lxy_pid" && kill -0 "$pair_pid" || { echo "FAIL: an attacked node died"; exit 1; }
