@@ -2,10 +2,14 @@
 
 #include <spdlog/spdlog.h>
 #include <sqlite3.h>
+#include <unistd.h>
+
+#include <cerrno>
 
 #include <atomic>
 #include <future>
 #include <system_error>
+#include <utility>
 
 namespace netmc::store {
 namespace {
@@ -167,6 +171,11 @@ JobStore::JobStore(const std::filesystem::path& directory, Retention retention, 
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error) throw StoreError("--state-dir: cannot create " + directory.string() + ": " + error.message());
+  // SQLite would open a read-only store and fail at its first write with a vaguer message.
+  if (::access(directory.c_str(), W_OK) != 0) {
+    throw StoreError("job store " + file_.string() + ": its directory is not writable (" +
+                     std::system_category().message(errno) + "): the server could accept no job");
+  }
   writer_db_ = open_database(file_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   try {
     {
@@ -429,16 +438,25 @@ void JobStore::apply(Write& write) {
   } catch (const std::exception& problem) {
     failure = problem.what();
   }
+  std::uint64_t failures_in_a_row = 0;
   {
     std::lock_guard lock(mutex_);
     if (failure.empty()) {
       problem_.clear();
+      failures_in_a_row = std::exchange(failures_in_a_row_, 0);
     } else {
       ++failed_;
       problem_ = failure;
+      failures_in_a_row = ++failures_in_a_row_;
     }
   }
-  if (!failure.empty()) spdlog::error("job store {}: {} not written: {}", file_.string(), write.what, failure);
+  // The first failure of a run, then every thousandth: a full disk must not also flood the log.
+  if (!failure.empty() && failures_in_a_row % 1000 == 1) {
+    spdlog::error("job store {}: {} not written: {} ({} writes failed in a row)", file_.string(), write.what, failure,
+                  failures_in_a_row);
+  } else if (failure.empty() && failures_in_a_row > 0) {
+    spdlog::info("job store {}: written again after {} failed writes", file_.string(), failures_in_a_row);
+  }
   if (write.then) write.then();
 }
 

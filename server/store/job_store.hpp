@@ -141,6 +141,7 @@ class JobStore {
   std::string problem_;
   std::uint64_t dropped_ = 0;
   std::uint64_t failed_ = 0;
+  std::uint64_t failures_in_a_row_ = 0;
   std::thread writer_;
 };
 
