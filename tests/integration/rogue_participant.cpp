@@ -13,6 +13,7 @@
 //   flood   --count random setpoints as fast as it can to the partitions of --axis (comma-
 //           separated axes), on the setpoint topic of the node's clock: random server (its own
 //           identity, a made-up one), job, iteration, cycle and command. Prints the rate.
+//           --control: random END_ITERATION and END_JOB job controls instead.
 // Without DDS Security every participant on the domain can do this; what netmc promises is
 // that none of it moves an axis of the real server's job or changes its result.
 
@@ -52,6 +53,7 @@ struct Options {
   double seconds = 30.0;
   double every_s = 1.0;
   std::size_t count = 300000;
+  bool control = false;
 };
 
 // The status of the node hosting `axis` (its participant, plant, clock), once it is discovered.
@@ -220,10 +222,14 @@ int flood(const Options& options) {
   const bool realtime = node->clock() == "realtime";
   std::vector<std::pair<std::string, eprosima::fastdds::dds::DataWriter*>> writers;
   for (const auto& axis : axes) {
-    writers.emplace_back(axis, context.writer(context.topic<nd::SetpointPubSubType>(
-                                                  realtime ? nd::kRealtimeSetpointTopic : nd::kLockstepSetpointTopic),
-                                              realtime ? nd::Delivery::stream : nd::Delivery::exchange,
-                                              nd::partition_of_axis(axis)));
+    writers.emplace_back(axis, options.control
+                                   ? context.writer(context.topic<nd::JobControlPubSubType>(nd::kJobControlTopic),
+                                                    nd::Delivery::control)
+                                   : context.writer(context.topic<nd::SetpointPubSubType>(
+                                                        realtime ? nd::kRealtimeSetpointTopic
+                                                                 : nd::kLockstepSetpointTopic),
+                                                    realtime ? nd::Delivery::stream : nd::Delivery::exchange,
+                                                    nd::partition_of_axis(axis)));
   }
   for (const auto& [axis, writer] : writers) {
     if (!context.wait_for_participants(writer, {node->participant()}, std::chrono::seconds(10))) {
@@ -231,8 +237,8 @@ int flood(const Options& options) {
       return 1;
     }
   }
-  fmt::print("rogue: flooding axes {} (node {}) with {} random setpoints\n", options.axis, node->node(),
-             options.count);
+  fmt::print("rogue: flooding axes {} (node {}) with {} random {}\n", options.axis, node->node(), options.count,
+             options.control ? "job controls" : "setpoints");
   std::fflush(stdout);
   std::mt19937_64 random(42);
   std::uniform_real_distribution<double> command(-1e3, 1e3);
@@ -241,6 +247,17 @@ int flood(const Options& options) {
   std::size_t sent = 0;
   for (; sent < options.count && !g_stop.load(); ++sent) {
     const auto& [axis, writer] = writers[sent % writers.size()];
+    if (options.control) {
+      nd::JobControl c;
+      c.axis(axis);
+      c.server(sent % 2 == 0 ? context.identity() : fmt::format("{:024x}", any(random) >> 32));
+      c.job_id(small(random));
+      c.iteration(static_cast<std::uint32_t>(small(random)));
+      c.kind(sent % 4 < 2 ? nd::CONTROL_END_ITERATION : nd::CONTROL_END_JOB);
+      c.cycle(cycle(random));
+      nd::write_checked(writer, &c);
+      continue;
+    }
     nd::Setpoint s;
     s.axis(axis);
     s.server(sent % 2 == 0 ? context.identity() : fmt::format("{:024x}", any(random) >> 32));
@@ -252,7 +269,8 @@ int flood(const Options& options) {
     nd::write_checked(writer, &s);
   }
   const double took_s = std::chrono::duration<double>(Clock::now() - started).count();
-  fmt::print("rogue: {} random setpoints sent in {:.2f} s ({:.0f} per second)\n", sent, took_s,
+  fmt::print("rogue: {} random {} sent in {:.2f} s ({:.0f} per second)\n", sent,
+             options.control ? "job controls" : "setpoints", took_s,
              static_cast<double>(sent) / took_s);
   return 0;
 }
@@ -436,6 +454,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.001, 60.0));
   app.get_subcommand("flood")->add_option("--count", options.count, "Setpoints to send")
       ->check(CLI::Range(1, 100000000));
+  app.get_subcommand("flood")->add_flag("--control", options.control,
+                                        "Job controls (END_ITERATION, END_JOB) instead of setpoints");
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
