@@ -1,0 +1,71 @@
+// A job's start that waits for its server beside the node's loop (PendingJobStarts).
+
+#include <gtest/gtest.h>
+
+#include "server/axis/pending_job_starts.hpp"
+
+namespace netmc::axis {
+namespace {
+
+using Clock = PendingJobStarts::Clock;
+
+netmc::dds::JobControl control(const std::string& axis, std::uint64_t job, netmc::dds::ControlKind kind) {
+  netmc::dds::JobControl c;
+  c.axis(axis);
+  c.server("server-" + std::to_string(job));
+  c.job_id(job);
+  c.kind(kind);
+  return c;
+}
+
+TEST(PendingJobStarts, AStartSettlesOnceItsServerReadsAndItsAxisLaterControlFollowsInOrder) {
+  PendingJobStarts starts;
+  const auto t0 = Clock::now();
+  starts.wait(control("x", 1, netmc::dds::CONTROL_BEGIN_ITERATION), t0);
+  EXPECT_TRUE(starts.waiting("x"));
+  EXPECT_FALSE(starts.waiting("y"));  // the node's other axes go on
+  starts.hold_back(control("x", 1, netmc::dds::CONTROL_END_ITERATION));
+  starts.hold_back(control("x", 1, netmc::dds::CONTROL_END_JOB));
+  bool reads = false;
+  const auto server_reads = [&](const netmc::dds::JobControl&) { return reads; };
+  EXPECT_TRUE(starts.settle(server_reads, t0 + std::chrono::seconds(1)).empty());
+  reads = true;
+  const auto settled = starts.settle(server_reads, t0 + std::chrono::seconds(1));
+  ASSERT_EQ(settled.size(), 1u);
+  EXPECT_TRUE(settled[0].server_reads);
+  EXPECT_EQ(settled[0].begin.job_id(), 1u);
+  ASSERT_EQ(settled[0].held_back.size(), 2u);
+  EXPECT_EQ(settled[0].held_back[0].kind(), netmc::dds::CONTROL_END_ITERATION);
+  EXPECT_EQ(settled[0].held_back[1].kind(), netmc::dds::CONTROL_END_JOB);
+  EXPECT_TRUE(starts.empty());
+}
+
+TEST(PendingJobStarts, AStartWhoseServerNeverReadsIsGivenUpAfterFiveSeconds) {
+  PendingJobStarts starts;
+  const auto t0 = Clock::now();
+  starts.wait(control("x", 7, netmc::dds::CONTROL_BEGIN_ITERATION), t0);
+  const auto never = [](const netmc::dds::JobControl&) { return false; };
+  EXPECT_TRUE(starts.settle(never, t0 + std::chrono::milliseconds(4999)).empty());
+  const auto settled = starts.settle(never, t0 + std::chrono::milliseconds(5000));
+  ASSERT_EQ(settled.size(), 1u);
+  EXPECT_FALSE(settled[0].server_reads);
+  EXPECT_EQ(settled[0].begin.job_id(), 7u);
+  EXPECT_FALSE(starts.waiting("x"));
+}
+
+TEST(PendingJobStarts, HeldBackControlIsBoundedAndTheOldestGoFirst) {
+  PendingJobStarts starts;
+  const auto t0 = Clock::now();
+  starts.wait(control("x", 1, netmc::dds::CONTROL_BEGIN_ITERATION), t0);
+  const std::size_t sent = PendingJobStarts::kMaxHeldBack + 10;
+  for (std::size_t i = 0; i < sent; ++i) starts.hold_back(control("x", 100 + i, netmc::dds::CONTROL_BEGIN_ITERATION));
+  starts.hold_back(control("y", 1, netmc::dds::CONTROL_END_JOB));  // not waiting: not kept
+  const auto settled = starts.settle([](const netmc::dds::JobControl&) { return true; }, t0);
+  ASSERT_EQ(settled.size(), 1u);
+  ASSERT_EQ(settled[0].held_back.size(), PendingJobStarts::kMaxHeldBack);
+  EXPECT_EQ(settled[0].held_back.front().job_id(), 100u + 10u);
+  EXPECT_EQ(settled[0].held_back.back().job_id(), 100u + sent - 1);
+}
+
+}  // namespace
+}  // namespace netmc::axis
