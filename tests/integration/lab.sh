@@ -30,6 +30,11 @@
 #                             removes them. Needs lab_need_nft.
 #   lab_loss_dropped NAME     prints how many datagrams NAME's lab_loss rules dropped so far (nft
 #                             counters; 0 without rules; reset by every lab_loss call).
+#   lab_partition A B on|off  a network partition between hosts A and B: every frame (IP, ARP,
+#                             multicast copies) from A's wire to B's and back is dropped on the
+#                             bridge while on; traffic of either with other hosts is untouched.
+#                             Needs lab_need_nft.
+#   lab_partition_dropped A B prints how many frames that partition dropped (0 without one).
 #   lab_start LOGNAME HOST [--monotonic SECONDS] -- CMD...
 #                             starts CMD in the background in HOST's network namespace (HOST "-" =
 #                             the machine's own network namespace), with --monotonic inside a new
@@ -226,6 +231,35 @@ lab_loss_dropped() {
   local out n total=0
   lab__idx "${1:-}" >/dev/null || return 1
   out=$(ip netns exec "$lab__bridge" nft list table bridge "netmc_loss_$1" 2>/dev/null) || { echo 0; return 0; }
+  for n in $(grep -o 'packets [0-9]*' <<<"$out" | awk '{print $2}'); do total=$((total + n)); done
+  echo "$total"
+}
+
+lab_partition() {
+  local a=${1:-} b=${2:-} state=${3:-} ia ib
+  ia=$(lab__idx "$a") && ib=$(lab__idx "$b") || return 1
+  local table="bridge netmc_partition_${a}_$b" script
+  script="table $table
+delete table $table
+"
+  case $state in
+    on) script+="table $table {
+  chain drop_all { type filter hook forward priority -10; policy accept;
+    iifname \"v$ia\" oifname \"v$ib\" counter drop
+    iifname \"v$ib\" oifname \"v$ia\" counter drop
+  }
+}
+" ;;
+    off) ;;
+    *) lab__err "lab_partition: on or off, not '$state'"; return 1 ;;
+  esac
+  ip netns exec "$lab__bridge" nft -f - <<<"$script"
+}
+
+lab_partition_dropped() {
+  local out n total=0
+  lab__idx "${1:-}" >/dev/null && lab__idx "${2:-}" >/dev/null || return 1
+  out=$(ip netns exec "$lab__bridge" nft list table bridge "netmc_partition_$1_$2" 2>/dev/null) || { echo 0; return 0; }
   for n in $(grep -o 'packets [0-9]*' <<<"$out" | awk '{print $2}'); do total=$((total + n)); done
   echo "$total"
 }

@@ -1,0 +1,113 @@
+#!/usr/bin/env bash
+# Network partition mid-job: netmc-server and the axis nodes x and y on lab hosts of their own
+# (lab.sh), and nftables on the lab's bridge drops every frame between the server's host and axis
+# x's host for each of SECONDS... (one job each), while a job in CLOCK mode runs. Axis y keeps
+# its network. For every partition:
+#   - the nft counters show frames dropped (the partition was real);
+#   - the job ends: a partition shorter than the server's patience (realtime: --axis-silence,
+#     default 500 ms; lockstep: --axis-timeout, 1000 ms here) lets it complete, a longer one fails
+#     it with a message naming axis x (client exit 1, the server's log says so);
+#   - realtime: axis x quick-stops on its watchdog (--watchdog, default 50 ms): its log says
+#     "no setpoint for N ms ... quick stop" with N within the watchdog plus scheduling slack;
+#   - lockstep: nothing acts without a setpoint, so no watchdog is involved: the axis waits;
+#   - the NEXT job on the same server and nodes runs to completion (after the last partition too).
+# Usage: chaos_partition.sh BUILD_DIR CLOCK SECONDS...   (root, nftables; else exit 77)
+set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
+build=$(cd "$1" && pwd)
+clock=$2
+shift 2
+lengths=("$@")
+here=$(dirname "$0")
+source "$here/lib.sh"
+source "$here/lab.sh"
+lab_keep_logs
+netmc=$build/client/netmc
+lab_init
+lab_need_nft
+for h in srv ax ay; do lab_host "$h"; done
+axis_timeout_ms=1000
+silence_ms=500
+watchdog_ms=50
+
+lab_start server srv -- "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" \
+  --transport udp --interface eth0 --axis-timeout "$axis_timeout_ms" --axis-silence "$silence_ms"
+for a in x y; do
+  lab_start "$a" "a$a" -- "$build/server/axis/netmc-axis" --node "part-$a" --axes "$a" --clock "$clock" \
+    --domain "$domain" --transport udp --interface eth0 --watchdog "$watchdog_ms"
+done
+lab_wait_log server 'listening on' 10 || lab_fail "netmc-server did not start"
+lab_wait_log x serving 10 || lab_fail "axis x did not start"
+lab_wait_log y serving 10 || lab_fail "axis y did not start"
+port=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/server.log")
+# Realtime: 2 iterations of 3 s. Lockstep runs faster than the wall clock, so more of them, long
+# enough that a partition 1 s into the job falls inside it.
+if [ "$clock" = realtime ]; then job=(--iterations 2 --duration 3s); else job=(--iterations 40 --duration 3s); fi
+jobs_run=0
+# Lockstep loses nothing (reliable, repaired after the partition): a job it lets complete must
+# still equal netmc sim.
+[ "$clock" != lockstep ] || "$netmc" sim --controller adrc+ilccc "${job[@]}" --json "$tmp/sim.json" >/dev/null
+
+# run_job TAG: the job in the background from the server's host (management over its loopback).
+run_job() {
+  jobs_run=$((jobs_run + 1))
+  lab_start "job-$1" srv -- "$netmc" run --server "127.0.0.1:$port" --clock "$clock" --controller adrc+ilccc \
+    "${job[@]}" --json "$tmp/$1.json"
+}
+job_ends() {  # TAG LIMIT_S: the client's exit status
+  local st=0
+  lab_wait "job-$1" "$2" || st=$?
+  [ "$st" -ne 124 ] || lab_fail "job $1 still running after $2 s"
+  return "$st"
+}
+must_complete() {  # TAG
+  job_ends "$1" 120 || lab_fail "the job after the partition failed (exit $?): $(tail -n 3 "$tmp/job-$1.log")"
+  grep -q '"e_sum_m"' "$tmp/$1.json" || lab_fail "job $1 wrote no results"
+  echo "$clock: job $1 after the partition completed"
+}
+
+for seconds in "${lengths[@]}"; do
+  tag=p${seconds/./_}
+  run_job "$tag"
+  # 1 s into the job (its first iteration is running: lockstep and realtime both start within it).
+  lab_wait_log server "job $jobs_run" 10 || lab_fail "job $jobs_run did not start"
+  sleep 1
+  lab_partition srv ax on
+  sleep "$seconds"
+  dropped=$(lab_partition_dropped srv ax)
+  lab_partition srv ax off
+  [ "$dropped" -gt 0 ] || lab_fail "the ${seconds} s partition dropped no frame"
+  st=0
+  job_ends "$tag" 120 || st=$?
+  long=$(awk -v s="$seconds" -v c="$clock" -v t="$axis_timeout_ms" -v q="$silence_ms" \
+    'BEGIN { print (s * 1000 > (c == "realtime" ? q : t) * 1.5) ? 1 : 0 }')
+  short=$(awk -v s="$seconds" -v c="$clock" -v t="$axis_timeout_ms" -v q="$silence_ms" \
+    'BEGIN { print (s * 1000 < (c == "realtime" ? q : t) / 2) ? 1 : 0 }')
+  outcome=completed
+  if [ "$st" -ne 0 ]; then
+    outcome="failed: $(grep -m1 -o 'axis x.*' "$tmp/job-$tag.log" || tail -n 1 "$tmp/job-$tag.log")"
+    grep -q "job $jobs_run failed: axis x" "$tmp/server.log" || lab_fail "job $jobs_run: no failure naming axis x in the server's log"
+  fi
+  [ "$long" -eq 0 ] || [ "$st" -ne 0 ] || lab_fail "$clock: the job completed through a ${seconds} s partition"
+  [ "$short" -eq 0 ] || [ "$st" -eq 0 ] || lab_fail "$clock: a ${seconds} s partition failed the job: $outcome"
+  stop=""
+  if [ "$clock" = realtime ]; then
+    stop=$(grep -m1 -E "axis x job $jobs_run iteration [0-9]+: no setpoint for [0-9]+ ms .*quick stop" "$tmp/x.log" || true)
+    [ -n "$stop" ] || lab_fail "axis x did not quick-stop during the ${seconds} s partition"
+    ms=$(sed -E 's/.*no setpoint for ([0-9]+) ms.*/\1/' <<<"$stop")
+    # The watchdog is checked at each sample (5 ms); a loaded 2-core host adds its stalls.
+    [ "$ms" -le $((watchdog_ms + 150)) ] || lab_fail "axis x quick-stopped after $ms ms without setpoints (watchdog $watchdog_ms ms)"
+    stop="; axis x: quick stop after $ms ms without setpoints"
+  fi
+  if [ "$st" -eq 0 ] && [ "$clock" = lockstep ]; then
+    same_json "$tmp/sim.json" "$tmp/$tag.json" "lockstep job through a ${seconds} s partition" || lab_fail "results changed"
+  fi
+  if [ "$st" -eq 0 ] && [ "$clock" = realtime ]; then
+    stop+="; e_max per iteration (mm): $(sed -n 's/.*"e_max_m": \([0-9.eE+-]*\).*/\1/p' "$tmp/$tag.json" |
+      awk '{printf "%s%.3f", NR > 1 ? " " : "", $1 * 1e3}')"
+  fi
+  echo "$clock: ${seconds} s partition srv<->ax ($dropped frames dropped): job $outcome$stop"
+  run_job "after-$tag"
+  must_complete "after-$tag"
+done
+kill -0 "$(lab_pid server)" || lab_fail "netmc-server died"
