@@ -2,13 +2,8 @@
 
 namespace netmc::axis {
 
-std::optional<netmc::dds::JobControl> PendingJobStarts::wait(const netmc::dds::JobControl& begin,
-                                                             Clock::time_point now) {
-  std::optional<netmc::dds::JobControl> replaced;
-  const auto it = waiting_.find(begin.axis());
-  if (it != waiting_.end()) replaced = it->second.begin;
-  waiting_[begin.axis()] = Waiting{begin, now + kServerReadTimeout, {}};
-  return replaced;
+void PendingJobStarts::wait(const netmc::dds::JobControl& begin, Clock::time_point now) {
+  waiting_.emplace(begin.axis(), Waiting{begin, now + kServerReadTimeout, {}});
 }
 
 void PendingJobStarts::hold_back(const netmc::dds::JobControl& control) {

@@ -9,7 +9,6 @@
 #include <cstddef>
 #include <functional>
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,9 +27,9 @@ class PendingJobStarts {
   // for one axis cannot grow the node).
   static constexpr std::size_t kMaxHeldBack = 32;
 
-  // The start `begin` waits until its server reads; a start the axis was waiting for is given
-  // up (returned: its server is told).
-  std::optional<netmc::dds::JobControl> wait(const netmc::dds::JobControl& begin, Clock::time_point now);
+  // The start `begin` waits until its server reads. Only for an axis that does not wait yet: a
+  // waiting axis's control is held back (hold_back), its start included.
+  void wait(const netmc::dds::JobControl& begin, Clock::time_point now);
   bool waiting(const std::string& axis) const { return waiting_.count(axis) > 0; }
   bool empty() const { return waiting_.empty(); }
   // Control for a waiting axis: replayed after its start is settled.
