@@ -1,5 +1,7 @@
 #include "server/management/management_server.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 
 #include <chrono>
@@ -34,6 +36,51 @@ struct ManagementServer::State {
   bool stopped = false;
 };
 
+namespace {
+
+// Closes the oldest unauthenticated session (sessions are in the order accepted) that `which`
+// selects; false when there is none.
+template <typename Which>
+bool close_oldest_unauthenticated(std::vector<std::weak_ptr<Session>>& sessions, const std::string& why, Which which) {
+  for (auto it = sessions.begin(); it != sessions.end(); ++it) {
+    const auto session = it->lock();
+    if (!session || session->authenticated() || !which(*session)) continue;
+    spdlog::info("management connection from {} closed: not authenticated yet, and {}", session->remote(), why);
+    session->abort();
+    sessions.erase(it);
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool ManagementServer::make_room(State& state, const asio::ip::address& address) {
+  const auto& limits = state.limits;
+  const auto unauthenticated = [&](auto&& which) {
+    return static_cast<std::size_t>(std::count_if(state.sessions.begin(), state.sessions.end(), [&](const auto& s) {
+      const auto session = s.lock();
+      return session && !session->authenticated() && which(*session);
+    }));
+  };
+  const auto from_address = [&](const Session& session) { return session.remote_address() == address; };
+  const auto any = [](const Session&) { return true; };
+  // A new connection is unauthenticated: room is made among the unauthenticated, oldest first.
+  while (unauthenticated(from_address) >= limits.max_unauthenticated_per_address &&
+         close_oldest_unauthenticated(state.sessions, "its address opened another beyond the limit of " +
+                                                          std::to_string(limits.max_unauthenticated_per_address),
+                                      from_address)) {
+  }
+  const std::size_t share = std::min(limits.max_unauthenticated, limits.max_connections);
+  while ((unauthenticated(any) >= share || state.sessions.size() >= limits.max_connections) &&
+         close_oldest_unauthenticated(state.sessions, "another connection came beyond the limit of " +
+                                                          std::to_string(share) + " unauthenticated",
+                                      any)) {
+  }
+  // Only authenticated clients left: the cap holds.
+  return state.sessions.size() < limits.max_connections;
+}
+
 void ManagementServer::accept_after_error(const std::shared_ptr<State>& state) {
   state->retry.expires_after(std::chrono::milliseconds(100));
   state->retry.async_wait([state](const boost::system::error_code& error) {
@@ -57,7 +104,10 @@ void ManagementServer::accept(const std::shared_ptr<State>& state) {
     });
     auto session = std::make_shared<Session>(std::move(socket), state->handler.on_request, state->limits.session,
                                              state->tls, state->on_handshake_failure);
-    if (state->sessions.size() >= state->limits.max_connections) {
+    if (make_room(*state, session->remote_address())) {
+      state->sessions.push_back(session);
+      session->start();
+    } else {
       // Refused with a reason, not left waiting: the client reports it and exits.
       netmc::v1::Response refusal;
       refusal.mutable_error()->set_message("server busy: " + std::to_string(state->limits.max_connections) +
@@ -65,9 +115,6 @@ void ManagementServer::accept(const std::shared_ptr<State>& state) {
       session->start();
       session->send(refusal);
       session->close();
-    } else {
-      state->sessions.push_back(session);
-      session->start();
     }
     accept(state);
   });

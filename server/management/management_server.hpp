@@ -21,6 +21,13 @@ struct ManagementLimits {
   // Open connections; one more is answered with an error and closed. With 16 MiB frames this
   // bounds the memory that partial frames can take.
   std::size_t max_connections = 32;
+  // Connections not yet authenticated (SessionLimits::authentication_timeout), at most this many
+  // (and at most max_connections); one more closes the oldest of them rather than being refused,
+  // so a client with the token always gets in while the slots are held by silent connections.
+  std::size_t max_unauthenticated = 16;
+  // The same, counted per remote address: one host cannot take the whole share. Authenticated
+  // connections are not counted per address (local clients and clients behind one NAT share it).
+  std::size_t max_unauthenticated_per_address = 8;
   SessionLimits session;
 };
 
@@ -56,6 +63,9 @@ class ManagementServer {
   struct State;
   static void accept(const std::shared_ptr<State>& state);
   static void accept_after_error(const std::shared_ptr<State>& state);
+  // Closes unauthenticated sessions as the limits ask before one more from `address` is taken;
+  // false when the cap is held by authenticated sessions alone (the new one is refused).
+  static bool make_room(State& state, const boost::asio::ip::address& address);
 
   std::shared_ptr<State> state_;
   std::uint16_t port_ = 0;

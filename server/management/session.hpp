@@ -11,6 +11,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <cstddef>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -31,6 +32,16 @@ struct SessionLimits {
   // A frame begun must be complete within this long (a slow or stalled sender of a large frame
   // cannot hold its buffer).
   std::chrono::milliseconds frame_timeout{std::chrono::seconds(30)};
+  // A connection not marked authenticated (Session::mark_authenticated) this long after it was
+  // accepted is closed; a TLS handshake counts within it. Silent connections cannot hold slots.
+  std::chrono::milliseconds authentication_timeout{std::chrono::seconds(5)};
+  // Responses queued and not yet taken by the peer: above this, no further request is read
+  // (TCP flow control then holds the client back) until they drain. Leaves room for one
+  // response of the largest frame on top.
+  std::size_t pause_reading_above = std::size_t{1} << 20;
+  // Above this (updates pushed from job threads to a peer that does not read), the connection
+  // is closed and the reason logged.
+  std::size_t close_above = std::size_t{64} << 20;
 };
 
 class Session final : public Peer, public std::enable_shared_from_this<Session> {
@@ -62,6 +73,20 @@ class Session final : public Peer, public std::enable_shared_from_this<Session> 
   void hold() override { holds_.fetch_add(1, std::memory_order_acq_rel); }
   void release() override { holds_.fetch_sub(1, std::memory_order_acq_rel); }
 
+  // Thread-safe: the peer proved it may use the server (showed the token; without a token file,
+  // sent a well-formed request). Until then the authentication timeout applies and the server
+  // may close this connection to make room for another.
+  void mark_authenticated() { authenticated_.store(true, std::memory_order_release); }
+  bool authenticated() const { return authenticated_.load(std::memory_order_acquire); }
+
+  // Thread-safe: bytes of responses accepted by send() and not yet written to the socket.
+  std::size_t queued_bytes() const { return queued_bytes_.load(std::memory_order_acquire); }
+
+  // The peer's address (kept from the accept: still there after the socket closed).
+  const boost::asio::ip::address& remote_address() const { return remote_address_; }
+  // "address:port", for log lines.
+  const std::string& remote() const { return remote_; }
+
   // Thread-safe: stops reading, sends the responses already queued, then closes the socket.
   void close();
   // Thread-safe: closes the socket now; queued responses are dropped (server shutdown).
@@ -70,9 +95,11 @@ class Session final : public Peer, public std::enable_shared_from_this<Session> 
  private:
   void handshake();
   void read();
+  void dispatch_frames();  // the complete frames buffered, then read() unless paused or closing
   void watch();  // the limits' timer
   boost::asio::ip::tcp::socket& socket();  // the TCP socket under the stream
   void write_next();
+  void drop_outbox();  // forgets what is queued, and its bytes
   void close_on_strand();
   void abort_on_strand();
 
@@ -84,13 +111,19 @@ class Session final : public Peer, public std::enable_shared_from_this<Session> 
   boost::asio::steady_timer watchdog_;
   std::chrono::steady_clock::time_point last_activity_;     // strand only
   std::chrono::steady_clock::time_point frame_started_;     // strand only; when buffered() became > 0
+  std::chrono::steady_clock::time_point accepted_;          // the authentication timeout's start
   FrameDecoder decoder_;
   std::array<char, 8192> buffer_{};
   std::deque<std::string> outbox_;  // front() is being written
   bool closing_ = false;            // strand only
   bool ready_ = true;               // strand only; false until a TLS handshake has succeeded
+  bool reading_paused_ = false;     // strand only; too many answers queued: no read under way
   std::atomic<bool> open_{true};
   std::atomic<int> holds_{0};
+  std::atomic<bool> authenticated_{false};
+  std::atomic<std::size_t> queued_bytes_{0};
+  boost::asio::ip::address remote_address_;
+  std::string remote_;
 };
 
 }  // namespace netmc::management

@@ -85,6 +85,18 @@ int main(int argc, char** argv) {
   app.add_option("--idle-timeout", idle_timeout_s,
                  "Seconds a management connection with no job of its own may stay silent before it is closed")
       ->check(CLI::Range(1, 86400));
+  int authentication_timeout_s = static_cast<int>(
+      std::chrono::duration_cast<std::chrono::seconds>(limits.session.authentication_timeout).count());
+  app.add_option("--authentication-timeout", authentication_timeout_s,
+                 "Seconds a new management connection has to show the token (without --token-file: to send a "
+                 "request), TLS handshake included, before it is closed")
+      ->check(CLI::Range(1, 3600));
+  app.add_option("--max-unauthenticated", limits.max_unauthenticated,
+                 "Management connections not yet authenticated; one more closes the oldest of them")
+      ->check(CLI::Range(1, 4096));
+  app.add_option("--max-unauthenticated-per-address", limits.max_unauthenticated_per_address,
+                 "The same, from one remote address")
+      ->check(CLI::Range(1, 4096));
   std::string token_file;
   app.add_option("--token-file", token_file,
                  "Clients must show the token in this file (one line, 16+ characters; clients name the "
@@ -219,6 +231,7 @@ int main(int argc, char** argv) {
     netmc::service::JobService jobs(context, nodes, clocks, options);
     limits.max_connections = static_cast<std::size_t>(max_connections);
     limits.session.idle_timeout = std::chrono::seconds(idle_timeout_s);
+    limits.session.authentication_timeout = std::chrono::seconds(authentication_timeout_s);
     boost::asio::io_context io;
     netmc::management::ManagementServer server(
         io, listen_address, port,
@@ -233,6 +246,7 @@ int main(int argc, char** argv) {
             session.close();
             return;
           }
+          session.mark_authenticated();  // the token shown (or none asked): the pre-auth limits end
           jobs.handle(session.shared_from_this(), request, admin);
         }},
         limits, tls, [](const std::string& peer, const std::string& reason) {

@@ -3,6 +3,7 @@
 // bounded; the whole suite takes well under a second.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <filesystem>
@@ -281,6 +282,7 @@ std::vector<netmc::v1::Response> raw_exchange(std::uint16_t port, const std::str
 // A handler that counts the requests and accepts each as job 1.
 ManagementServer::Handler accept_counting(std::atomic<int>& requests) {
   return {[&requests](Session& session, const netmc::v1::Request& request) {
+    session.mark_authenticated();
     ++requests;
     netmc::v1::Response accepted;
     accepted.set_request_id(request.request_id());
@@ -332,6 +334,7 @@ TEST(ManagementEndpoint, SilentAndStalledConnectionsAreClosedButOneWithWorkUnder
   limits.session.idle_timeout = 300ms;
   limits.session.frame_timeout = 300ms;
   ManagementServer server(runner.io, "127.0.0.1", 0, {[](Session& session, const netmc::v1::Request&) {
+    session.mark_authenticated();
     session.hold();  // as a job of this connection would
   }}, limits);
   runner.start();
@@ -368,6 +371,205 @@ TEST(ManagementEndpoint, OneConnectionOverTheCapIsRefusedWithAMessage) {
   EXPECT_NE(refused[0].error().message().find("server busy: 2 connections"), std::string::npos)
       << refused[0].error().message();
   EXPECT_EQ(requests.load(), 2);
+}
+
+netmc::v1::Request status_request(std::uint64_t id, const std::string& token = "") {
+  netmc::v1::Request request;
+  request.set_request_id(id);
+  request.set_token(token);
+  request.mutable_status();
+  return request;
+}
+
+// Issue 26: a client that sends requests and never reads their answers once made the server
+// queue them without bound (623 k status requests: 2.9 GB).
+TEST(ManagementEndpoint, AClientThatNeverReadsIsNotReadFurtherAndOthersAreStillAnswered) {
+  IoThread runner;  // first: everything holding a Session goes before the io_context
+  const ManagementLimits limits;
+  const std::string table(32 << 10, 's');  // each answer as large as a long status table
+  std::atomic<int> requests{0};
+  std::atomic<std::size_t> most_queued{0};
+  ManagementServer server(runner.io, "127.0.0.1", 0, {[&](Session& session, const netmc::v1::Request& request) {
+    session.mark_authenticated();
+    ++requests;
+    netmc::v1::Response answer;
+    answer.set_request_id(request.request_id());
+    answer.mutable_error()->set_message(table);
+    session.send(answer);
+    const auto queued = session.queued_bytes();
+    if (queued > most_queued.load()) most_queued = queued;
+  }}, limits);
+  runner.start();
+
+  // 1000 requests of a few bytes each: they all fit in the sockets' buffers, the writes return.
+  constexpr int kRequests = 1000;
+  boost::asio::io_context io;
+  boost::asio::ip::tcp::socket flooder(io);
+  flooder.connect({boost::asio::ip::make_address("127.0.0.1"), server.port()});
+  std::string flood;
+  for (int i = 1; i <= kRequests; ++i) flood += encode_frame(status_request(static_cast<std::uint64_t>(i)));
+  boost::asio::write(flooder, boost::asio::buffer(flood));
+  std::this_thread::sleep_for(1s);  // the server reads what it will
+
+  // What the server holds stays under the pause threshold plus one answer (32 MB without it).
+  const std::size_t one_answer = table.size() + 64;
+  EXPECT_LE(most_queued.load(), limits.session.pause_reading_above + one_answer)
+      << requests.load() << " of " << kRequests << " requests read";
+  EXPECT_LT(requests.load(), kRequests) << "every request was read although no answer was taken";
+
+  // Another client is answered meanwhile.
+  ManagementClient other("127.0.0.1:" + std::to_string(server.port()), 2s);
+  other.send(status_request(5000));
+  const auto answer = other.receive(2s);
+  ASSERT_TRUE(answer.has_value());
+  EXPECT_EQ(answer->request_id(), 5000u);
+
+  // Once the flooder reads, every request is answered, in order: paused, not dropped.
+  FrameDecoder decoder;
+  std::array<char, 65536> buffer{};
+  std::uint64_t next_id = 1;
+  const auto deadline = std::chrono::steady_clock::now() + 30s;
+  while (next_id <= kRequests && std::chrono::steady_clock::now() < deadline) {
+    boost::system::error_code error;
+    const std::size_t n = flooder.read_some(boost::asio::buffer(buffer), error);
+    ASSERT_FALSE(error) << error.message() << " after " << next_id - 1 << " answers";
+    decoder.feed(buffer.data(), n);
+    while (auto payload = decoder.next()) {
+      netmc::v1::Response response;
+      ASSERT_TRUE(response.ParseFromString(*payload));
+      ASSERT_EQ(response.request_id(), next_id);
+      ++next_id;
+    }
+  }
+  EXPECT_EQ(next_id, kRequests + 1u);
+  EXPECT_EQ(requests.load(), kRequests + 1);
+  EXPECT_LE(most_queued.load(), limits.session.pause_reading_above + one_answer);
+}
+
+// Updates pushed from other threads (a job's iterations) to a peer that never reads: the
+// connection is closed at the cap, not queued without bound.
+TEST(ManagementEndpoint, UpdatesPushedToAPeerThatNeverReadsCloseItAtTheCap) {
+  IoThread runner;  // first: everything holding a Session goes before the io_context
+  ManagementLimits limits;
+  limits.session.close_above = 4u << 20;
+  std::promise<std::shared_ptr<Session>> connected;
+  ManagementServer server(runner.io, "127.0.0.1", 0, {[&](Session& session, const netmc::v1::Request&) {
+    session.mark_authenticated();
+    connected.set_value(session.shared_from_this());
+  }}, limits);
+  runner.start();
+  boost::asio::io_context io;
+  boost::asio::ip::tcp::socket reader_that_never_reads(io);
+  reader_that_never_reads.connect({boost::asio::ip::make_address("127.0.0.1"), server.port()});
+  boost::asio::write(reader_that_never_reads, boost::asio::buffer(encode_frame(status_request(1))));
+  auto session_future = connected.get_future();
+  ASSERT_EQ(session_future.wait_for(2s), std::future_status::ready);
+  const auto session = session_future.get();
+
+  // 50 MB of updates, 256 KiB each, as fast as a job thread can send them.
+  netmc::v1::Response update;
+  update.mutable_error()->set_message(std::string(256 << 10, 'u'));
+  std::size_t most_queued = 0;
+  int sent = 0;
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  for (; sent < 200 && session->open() && std::chrono::steady_clock::now() < deadline; ++sent) {
+    session->send(update);
+    most_queued = std::max(most_queued, session->queued_bytes());
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_FALSE(session->open()) << "all " << sent << " updates were queued; " << most_queued << " bytes at most";
+  EXPECT_LE(most_queued, limits.session.close_above);
+  // The peer sees the connection end (after what reached its buffers).
+  reader_that_never_reads.non_blocking(true);
+  boost::system::error_code error;
+  std::array<char, 65536> buffer{};
+  while (std::chrono::steady_clock::now() < deadline) {
+    reader_that_never_reads.read_some(boost::asio::buffer(buffer), error);
+    if (error && error != boost::asio::error::would_block) break;
+    if (error) std::this_thread::sleep_for(5ms);
+  }
+  EXPECT_TRUE(error == boost::asio::error::eof || error == boost::asio::error::connection_reset) << error.message();
+}
+
+// A socket connected from `source` (any 127.x.y.z reaches a server on 127.0.0.1) that says nothing.
+std::unique_ptr<boost::asio::ip::tcp::socket> silent_connection(boost::asio::io_context& io, const std::string& source,
+                                                                std::uint16_t port) {
+  auto socket = std::make_unique<boost::asio::ip::tcp::socket>(io);
+  socket->open(boost::asio::ip::tcp::v4());
+  socket->bind({boost::asio::ip::make_address(source), 0});
+  socket->connect({boost::asio::ip::make_address("127.0.0.1"), port});
+  socket->non_blocking(true);
+  return socket;
+}
+
+// True while the server keeps the connection open (nothing to read yet, no end seen).
+bool still_open(boost::asio::ip::tcp::socket& socket) {
+  std::array<char, 256> buffer{};
+  boost::system::error_code error;
+  while (!error) socket.read_some(boost::asio::buffer(buffer), error);
+  return error == boost::asio::error::would_block;
+}
+
+// Issue 26: 32 silent connections once filled the cap, and the endpoint answered "server busy"
+// to everyone, the token's holder included, until the 600 s idle timeout.
+TEST(ManagementEndpoint, SilentConnectionsCannotKeepATokenHolderOutAndAreClosedAtTheDeadline) {
+  IoThread runner;  // first: everything holding a Session goes before the io_context
+  ManagementLimits limits;
+  limits.session.authentication_timeout = 3s;
+  const std::string token = "0123456789abcdef-lab";
+  ManagementServer server(runner.io, "127.0.0.1", 0, {[&](Session& session, const netmc::v1::Request& request) {
+    netmc::v1::Response response;
+    response.set_request_id(request.request_id());
+    if (request.token() != token) {
+      response.mutable_error()->set_message("unauthenticated");
+      session.send(response);
+      session.close();
+      return;
+    }
+    session.mark_authenticated();
+    response.mutable_status();
+    session.send(response);
+  }}, limits);
+  runner.start();
+  boost::asio::io_context io;
+  std::vector<std::unique_ptr<boost::asio::ip::tcp::socket>> from_one_host, from_many_hosts;
+  const auto opened = std::chrono::steady_clock::now();
+  for (int i = 0; i < 40; ++i) from_one_host.push_back(silent_connection(io, "127.0.0.1", server.port()));
+  for (int host = 2; host <= 40; ++host) {
+    from_many_hosts.push_back(silent_connection(io, "127.0.0." + std::to_string(host), server.port()));
+  }
+  std::this_thread::sleep_for(300ms);  // all accepted by the server
+
+  const auto asked = std::chrono::steady_clock::now();
+  ManagementClient holder("127.0.0.1:" + std::to_string(server.port()), 2s);
+  holder.send(status_request(7, token));
+  const auto answer = holder.receive(2s);
+  const auto waited = std::chrono::steady_clock::now() - asked;
+  ASSERT_TRUE(answer.has_value());
+  EXPECT_TRUE(answer->has_status()) << answer->ShortDebugString();
+  EXPECT_LT(waited, 1s) << "the token's holder waited for the silent connections' deadline";
+
+  // What the silent ones still hold: within the unauthenticated share, and per address.
+  const auto open_from_one = std::count_if(from_one_host.begin(), from_one_host.end(), [](auto& s) { return still_open(*s); });
+  const auto open_from_many = std::count_if(from_many_hosts.begin(), from_many_hosts.end(), [](auto& s) { return still_open(*s); });
+  EXPECT_LE(static_cast<std::size_t>(open_from_one), limits.max_unauthenticated_per_address);
+  EXPECT_LE(static_cast<std::size_t>(open_from_one + open_from_many), limits.max_unauthenticated);
+
+  // Every silent connection is closed by the deadline (and a quarter second of its timer).
+  std::size_t open = 0;
+  do {
+    std::this_thread::sleep_for(100ms);
+    open = 0;
+    for (auto* group : {&from_one_host, &from_many_hosts}) {
+      for (auto& socket : *group) open += still_open(*socket) ? 1 : 0;
+    }
+  } while (open > 0 && std::chrono::steady_clock::now() - opened < 8s);
+  EXPECT_EQ(open, 0u) << "silent connections still open 8 s after they connected";
+  // The token's holder stays.
+  holder.send(status_request(8, token));
+  const auto again = holder.receive(2s);
+  ASSERT_TRUE(again.has_value());
+  EXPECT_EQ(again->request_id(), 8u);
 }
 
 TEST(AccessToken, AcceptsOnlyTheTokenOfItsFile) {
