@@ -140,6 +140,13 @@ int drive(const Options& options) {
       }
     }
   };
+  // As a lockstep server does, the first command goes once the axis has answered the BEGIN (its
+  // sample of cycle 0): a command that overtakes the BEGIN finds the axis held by no one, and the
+  // node drops it on arrival.
+  const auto answered = Clock::now() + std::chrono::seconds(2);
+  while (!realtime && samples == 0 && event_text == "none" && Clock::now() < answered && !g_stop.load()) {
+    take_reports(Clock::now() + std::chrono::milliseconds(20));
+  }
   const auto end = Clock::now() + std::chrono::milliseconds(static_cast<long>(options.seconds * 1e3));
   for (std::uint64_t cycle = 0; Clock::now() < end && !g_stop.load() && event_text == "none"; ++cycle) {
     nd::Setpoint setpoint;
