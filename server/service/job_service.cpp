@@ -306,6 +306,13 @@ void JobService::admit(const Submission& submission) {
     refuse(error.what());
     return;
   }
+  // The axes get the spec in one DDS sample: a larger one would fail when the job starts.
+  if (const std::size_t bytes = spec.ByteSizeLong(); bytes > netmc::dds::kMaxJobSpec) {
+    refuse(fmt::format("submit: the job spec takes {} bytes, more than the {} its axis nodes take (an inline delay "
+                       "trace of 1 000 000 samples alone takes 8 MB: shorten it to about 500 000)",
+                       bytes, netmc::dds::kMaxJobSpec));
+    return;
+  }
   auto job = std::make_shared<Job>();
   job->axes = job::axis_names(spec);
   job->spec = spec;
