@@ -25,6 +25,7 @@
 #include "server/job/dead_zone_spec.hpp"
 #include "server/job/legacy_spec.hpp"
 #include "server/job/plant_source.hpp"
+#include "server/job/reference_limits.hpp"
 
 namespace netmc::job {
 namespace {
@@ -463,9 +464,10 @@ void check_ranges(const netmc::v1::JobSpec& spec) {
   require(spec.sensor().resolution_m(), 0.0, 1.0, "sensor.resolution", " m");
   require(spec.sensor().noise_stddev_m(), 0.0, 1.0, "sensor.noise_stddev", " m");
   if (spec.has_initial_position()) {
-    require(spec.initial_position().x_m(), -1e3, 1e3, "initial_position.x", " m");
-    require(spec.initial_position().y_m(), -1e3, 1e3, "initial_position.y", " m");
+    require(spec.initial_position().x_m(), -kWorkspaceM, kWorkspaceM, "initial_position.x", " m");
+    require(spec.initial_position().y_m(), -kWorkspaceM, kWorkspaceM, "initial_position.y", " m");
   }
+  check_reference_limits(spec.trajectory(), spec.sample_period_s());
 }
 
 }  // namespace

@@ -72,7 +72,8 @@ TEST(JobBuilder, ContourLibraryShapesFromJson) {
   EXPECT_NE(error(R"({"polyline": {"points": [{"x_m": 0}], "max_speed_m_s": 0.01, "max_acceleration_m_s2": 0.05}})")
                 .find("trajectory: polyline points: expected at least two points"),
             std::string::npos);
-  EXPECT_NE(error(R"({"spline": {"points": [{"x_m": 0}, {"x_m": 0.01}]}})").find("trajectory: feed"), std::string::npos);
+  EXPECT_NE(error(R"({"spline": {"points": [{"x_m": 0}, {"x_m": 0.01}]}})").find("trajectory.spline.feed.feed_m_s: expected"),
+            std::string::npos);
   EXPECT_NE(error(R"({"lissajous": {"amplitude_x_m": 0.02, "amplitude_y_m": 0.015, "frequency_x": 1, "frequency_y": 1, "period_s": 4}})")
                 .find("retraces itself"),
             std::string::npos);

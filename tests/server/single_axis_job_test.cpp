@@ -174,7 +174,7 @@ TEST(SingleAxisJob, BadSpecsNameTheField) {
   EXPECT_EQ(message(spec).rfind("trajectory.multi_sine:", 0), 0u) << message(spec);
   spec = preset_job("C3 I");
   spec.mutable_trajectory()->mutable_multi_sine()->mutable_terms(0)->set_frequency_hz(-1.0);
-  EXPECT_EQ(message(spec).rfind("trajectory.multi_sine.terms.frequency_hz:", 0), 0u) << message(spec);
+  EXPECT_EQ(message(spec).rfind("trajectory.multi_sine.terms[0].frequency_hz:", 0), 0u) << message(spec);
   spec = preset_job("C3 I");
   for (int i = 0; i < 17; ++i) *spec.mutable_trajectory()->mutable_multi_sine()->add_terms() = spec.trajectory().multi_sine().terms(0);
   EXPECT_EQ(message(spec).rfind("trajectory.multi_sine.terms:", 0), 0u) << message(spec);
