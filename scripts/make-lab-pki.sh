@@ -23,6 +23,10 @@
 # --management-client NAME (repeatable): DIR/NAME.pem and .key, a TLS client certificate for a
 # server started with --tls-client-ca DIR/ca.pem (clients: NETMC_TLS_CERT, NETMC_TLS_KEY); no
 # DDS permission.
+# Run again on a lab's DIR it adds what is missing (participants, their grants, the management
+# certificate) signed by the lab's CA, and never replaces the CA, a key or a certificate: a name
+# asked for with other permissions, a management certificate for other hosts or a CA certificate
+# without its key is refused, nothing written.
 # Needs openssl. Keys are ECDSA P-256; certificates and permissions hold for 10 years.
 set -euo pipefail
 
@@ -66,18 +70,58 @@ for host in "${management[@]}"; do
   fi
 done
 for client in "${management_clients[@]}"; do name_ok "$client"; done
+for s in "${servers[@]}" "${readers[@]}"; do name_ok "$s"; done
+for spec in "${nodes[@]}"; do
+  node=${spec%%:*}
+  axes=${spec#*:}
+  [ "$node" != "$spec" ] && [ -n "$axes" ] || usage
+  name_ok "$node"
+  for axis in ${axes//,/ }; do name_ok "$axis"; done
+done
 
 mkdir -p "$dir"
 umask 077
 cd "$dir"
 
-openssl ecparam -name prime256v1 -genkey -noout -out ca.key
-openssl req -x509 -new -key ca.key -sha256 -days 3650 -subj "/CN=netmc lab CA" -out ca.pem 2>/dev/null
+# A lab's directory is added to, never replaced: its CA, keys and certificates are what the
+# running nodes hold (a new CA would make every one of them a stranger). Everything is checked
+# before anything is written; a conflict is refused with what to do.
+refuse() { echo "$0: $dir: $*; nothing written (a lab's CA, keys and certificates are never replaced)" >&2; exit 1; }
+if [ -e ca.pem ] || [ -e ca.key ]; then
+  [ -e ca.pem ] && [ -e ca.key ] || refuse "ca.pem and ca.key must both be here to sign with the lab's CA (restore the missing one, or use a new directory for a new lab)"
+fi
+[ ! -e permissions.p7s ] || [ -e permissions.xml ] ||
+  refuse "permissions.p7s without permissions.xml: the grants it signs cannot be extended (restore permissions.xml)"
+# An existing participant's certificate and key are kept, if they are the CA's and a pair.
+reusable() {  # reusable NAME: 0 if NAME.pem and NAME.key are here (checked), 1 if neither
+  [ -e "$1.pem" ] || [ -e "$1.key" ] || return 1
+  [ -e "$1.pem" ] && [ -e "$1.key" ] || refuse "$1: one of $1.pem and $1.key is missing (restore it, or choose another name)"
+  openssl verify -CAfile ca.pem "$1.pem" >/dev/null 2>&1 || refuse "$1.pem is not signed by this directory's ca.pem"
+  [ "$(openssl x509 -in "$1.pem" -noout -pubkey)" == "$(openssl pkey -in "$1.key" -pubout)" ] ||
+    refuse "$1.key is not the key of $1.pem"
+  return 0
+}
+for name in "${servers[@]}" "${readers[@]}" "${nodes[@]%%:*}" "${management_clients[@]}"; do reusable "$name" || true; done
+if reusable management && [ -n "$alt" ]; then
+  have=$(openssl x509 -in management.pem -noout -ext subjectAltName | tail -n +2 | tr -d ' ' | sed 's/IPAddress:/IP:/g')
+  [ "$have" == "$alt" ] ||
+    refuse "management.pem names $have, not $alt (move management.pem and management.key away to issue one for these hosts)"
+fi
 
+ca_state="CA kept"
+[ -e ca.pem ] || {
+  ca_state="new CA"
+  openssl ecparam -name prime256v1 -genkey -noout -out ca.key
+  openssl req -x509 -new -key ca.key -sha256 -days 3650 -subj "/CN=netmc lab CA" -out ca.pem 2>/dev/null
+}
+
+issued=()
 # issue NAME [SUBJECT [EXTENSIONS]]: NAME.key and NAME.pem signed by the CA, for SUBJECT (default
-# /CN=NAME), with the X.509 extensions given (lines of an openssl extfile; default none).
+# /CN=NAME), with the X.509 extensions given (lines of an openssl extfile; default none); an
+# existing pair (checked above) is kept.
 issue() {
-  name_ok "$1"
+  [ ! -e "$1.pem" ] || return 0
+  issued+=("$1")
   openssl ecparam -name prime256v1 -genkey -noout -out "$1.key"
   openssl req -new -key "$1.key" -sha256 -subj "${2:-/CN=$1}" -out "$1.csr" 2>/dev/null
   printf '%s' "${3:-}" >"$1.ext"
@@ -85,13 +129,6 @@ issue() {
     ${3:+-extfile "$1.ext"} -out "$1.pem" 2>/dev/null
   rm -f "$1.csr" "$1.ext"
 }
-
-# The management endpoint's TLS certificate (each host as the clients dial it), and its clients'.
-[ -z "$alt" ] || issue management "/CN=netmc management" \
-  "$(printf 'basicConstraints=critical,CA:FALSE\nsubjectAltName=%s\nextendedKeyUsage=serverAuth' "$alt")"
-for client in "${management_clients[@]}"; do
-  issue "$client" "" "$(printf 'basicConstraints=critical,CA:FALSE\nextendedKeyUsage=clientAuth')"
-done
 
 topics() {  # topics T...: <topic> elements
   for t in "$@"; do printf '            <topic>%s</topic>\n' "$t"; done
@@ -134,40 +171,81 @@ $2
 XML
 }
 
-{
-  echo '<?xml version="1.0" encoding="UTF-8"?>'
-  echo '<dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="omg_shared_ca_permissions.xsd">'
-  echo '  <permissions>'
-  for s in "${servers[@]}"; do
-    issue "$s"
-    # The per-axis topics live in the axes' partitions, the others in the default one.
-    grant "$s" "$(rule "netmc/v3/lockstep/setpoint netmc/v3/realtime/setpoint" \
-      "netmc/v3/lockstep/feedback netmc/v3/realtime/feedback netmc/v3/axis_event" "netmc.axis.*" "netmc.axis.*")
+# grant_of NAME: the <grant> NAME's role gives it (servers, nodes, readers as named).
+declare -A grants=()
+order=()
+for s in "${servers[@]}"; do
+  # The per-axis topics live in the axes' partitions, the others in the default one.
+  grants[$s]=$(grant "$s" "$(rule "netmc/v3/lockstep/setpoint netmc/v3/realtime/setpoint" \
+    "netmc/v3/lockstep/feedback netmc/v3/realtime/feedback netmc/v3/axis_event" "netmc.axis.*" "netmc.axis.*")
 $(rule "netmc/v3/job_control netmc/v3/clock_probe netmc/v3/iteration_log" \
-      "netmc/v3/node_status netmc/v3/clock_reply")"
-  done
-  for spec in "${nodes[@]}"; do
-    node=${spec%%:*}
-    axes=${spec#*:}
-    [ "$node" != "$spec" ] && [ -n "$axes" ] || usage
-    issue "$node"
-    partitions=""
-    for axis in ${axes//,/ }; do name_ok "$axis"; partitions+=" netmc.axis.$axis"; done
-    # Feedback and events only in its axes' partitions, their setpoints; its status and clock
-    # replies, job control and probes in the default partition.
-    grant "$node" "$(rule "netmc/v3/lockstep/feedback netmc/v3/realtime/feedback netmc/v3/axis_event" \
-      "netmc/v3/lockstep/setpoint netmc/v3/realtime/setpoint" "$partitions" "$partitions")
-$(rule "netmc/v3/node_status netmc/v3/clock_reply" "netmc/v3/job_control netmc/v3/clock_probe netmc/v3/node_status")"
-  done
-  for r in "${readers[@]}"; do
-    issue "$r"
-    grant "$r" "$(rule "" "netmc/v3/iteration_log netmc/v3/node_status")"
-  done
-  echo '  </permissions>'
-  echo '</dds>'
-} >permissions.xml
+    "netmc/v3/node_status netmc/v3/clock_reply")")
+  order+=("$s")
+done
+for spec in "${nodes[@]}"; do
+  node=${spec%%:*}
+  axes=${spec#*:}
+  partitions=""
+  for axis in ${axes//,/ }; do partitions+=" netmc.axis.$axis"; done
+  # Feedback and events only in its axes' partitions, their setpoints; its status and clock
+  # replies, job control and probes in the default partition.
+  grants[$node]=$(grant "$node" "$(rule "netmc/v3/lockstep/feedback netmc/v3/realtime/feedback netmc/v3/axis_event" \
+    "netmc/v3/lockstep/setpoint netmc/v3/realtime/setpoint" "$partitions" "$partitions")
+$(rule "netmc/v3/node_status netmc/v3/clock_reply" "netmc/v3/job_control netmc/v3/clock_probe netmc/v3/node_status")")
+  order+=("$node")
+done
+for r in "${readers[@]}"; do
+  grants[$r]=$(grant "$r" "$(rule "" "netmc/v3/iteration_log netmc/v3/node_status")")
+  order+=("$r")
+done
 
-cat >governance.xml <<'XML'
+# The lab's permissions keep every grant they hold: a name already granted must be asked for with
+# the same permissions; new names are added.
+added=()
+for name in "${order[@]}"; do
+  if [ -e permissions.xml ] && grep -q "<grant name=\"$name\">" permissions.xml; then
+    held=$(awk -v open="<grant name=\"$name\">" 'index($0, open) {on = 1} on {print} on && /<\/grant>/ {exit}' permissions.xml)
+    [ "$held" == "${grants[$name]}" ] ||
+      refuse "$name: already in permissions.xml with other permissions than asked (choose another name, or a new directory for a new lab)"
+  else
+    added+=("$name")
+  fi
+done
+
+for name in "${order[@]}"; do issue "$name"; done
+# The management endpoint's TLS certificate (each host as the clients dial it), and its clients'.
+[ -z "$alt" ] || issue management "/CN=netmc management" \
+  "$(printf 'basicConstraints=critical,CA:FALSE\nsubjectAltName=%s\nextendedKeyUsage=serverAuth' "$alt")"
+for client in "${management_clients[@]}"; do
+  issue "$client" "" "$(printf 'basicConstraints=critical,CA:FALSE\nextendedKeyUsage=clientAuth')"
+done
+
+if [ ! -e permissions.xml ]; then
+  {
+    echo '<?xml version="1.0" encoding="UTF-8"?>'
+    echo '<dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="omg_shared_ca_permissions.xsd">'
+    echo '  <permissions>'
+    for name in "${added[@]}"; do echo "${grants[$name]}"; done
+    echo '  </permissions>'
+    echo '</dds>'
+  } >permissions.xml
+  sign=(permissions)
+elif [ ${#added[@]} -gt 0 ]; then
+  # The new grants go before the closing tag; the old ones stay as they were.
+  {
+    grep -v '^  </permissions>$' permissions.xml | grep -v '^</dds>$'
+    for name in "${added[@]}"; do echo "${grants[$name]}"; done
+    echo '  </permissions>'
+    echo '</dds>'
+  } >permissions.xml.new
+  mv permissions.xml.new permissions.xml
+  sign=(permissions)
+else
+  sign=()
+fi
+[ -e permissions.p7s ] || sign=(permissions)
+
+[ -e governance.p7s ] || cat >governance.xml <<'XML'
 <?xml version="1.0" encoding="UTF-8"?>
 <dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="omg_shared_ca_governance.xsd">
   <domain_access_rules>
@@ -194,8 +272,9 @@ cat >governance.xml <<'XML'
 </dds>
 XML
 
-for doc in governance permissions; do
+[ -e governance.p7s ] || sign+=(governance)
+for doc in "${sign[@]}"; do
   openssl smime -sign -in "$doc.xml" -text -out "$doc.p7s" -signer ca.pem -inkey ca.key
 done
 chmod 644 ca.pem ./*.pem governance.* permissions.*
-echo "$dir: CA, ${#servers[@]} server(s), ${#nodes[@]} node(s), ${#readers[@]} reader(s); governance.p7s, permissions.p7s${alt:+; management.pem for $alt}${management_clients[*]:+; management clients ${management_clients[*]}}"
+echo "$dir: $ca_state; issued: ${issued[*]:-none}; ${#added[@]} grant(s) added to permissions.p7s; ${#servers[@]} server(s), ${#nodes[@]} node(s), ${#readers[@]} reader(s) named${alt:+; management.pem for $alt}${management_clients[*]:+; management clients ${management_clients[*]}}"
