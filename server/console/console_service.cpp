@@ -52,6 +52,7 @@ class ConsoleService::Peer final : public management::Peer {
   bool open() const override { return open_.load(std::memory_order_acquire); }
   void hold() override {}
   void release() override {}
+  std::string name() const override { return "console"; }
 
   std::deque<netmc::v1::Response> take() {
     std::lock_guard lock(mutex_);

@@ -86,6 +86,8 @@ class Session final : public Peer, public std::enable_shared_from_this<Session> 
   const boost::asio::ip::address& remote_address() const { return remote_address_; }
   // "address:port", for log lines.
   const std::string& remote() const { return remote_; }
+  // Who submitted a job, for the job store and netmc jobs: "address:port".
+  std::string name() const override { return remote_; }
 
   // Thread-safe: stops reading, sends the responses already queued, then closes the socket.
   void close();
