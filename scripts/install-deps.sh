@@ -15,8 +15,8 @@ build=(build-essential cmake ninja-build pkg-config dpkg-dev file
   libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
   libmodbus-dev libzip-dev libtinyxml2-dev libsqlite3-dev)
 # What the tests and benchmarks use besides: gnuplot for figures, namespaces and nftables for
-# test hosts, libfaketime for a wall-clock step seen by one process only, rt-tests for the machine's latency, openssl for DDS Security certificates, systemd
-# for checking the units, podman with compose for the container test, and for the console: Debian's
+# test hosts, libfaketime for a wall-clock step seen by one process only, rt-tests for the
+# machine's latency, openssl for DDS Security certificates, systemd for checking the units, podman with compose for the container test, and for the console: Debian's
 # dygraphs (the page's plots), a headless browser driven by selenium, a WebSocket client and
 # promtool (prometheus) for /metrics.
 tests=(gnuplot-nox

@@ -64,8 +64,8 @@ run_phase() {
   job_pid=$!
 }
 phase_end() {
-  local name=$1 st=0 waited reason tripped
-  for waited in $(seq 600); do kill -0 "$job_pid" 2>/dev/null || break; sleep 0.1; done
+  local name=$1 st=0 reason tripped
+  for _ in $(seq 600); do kill -0 "$job_pid" 2>/dev/null || break; sleep 0.1; done
   if kill -0 "$job_pid" 2>/dev/null; then echo "FAIL: $name: the job did not end within 60 s"; exit 1; fi
   wait "$job_pid" || st=$?
   all_alive "$name"
