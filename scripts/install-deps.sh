@@ -16,9 +16,10 @@ build=(build-essential cmake ninja-build pkg-config dpkg-dev file
   libmodbus-dev libzip-dev libtinyxml2-dev libsqlite3-dev)
 # What the tests and benchmarks use besides: gnuplot for figures, namespaces and nftables for
 # test hosts, libfaketime for a wall-clock step seen by one process only, rt-tests for the
-# machine's latency, openssl for DDS Security certificates, systemd for checking the units, podman with compose for the container test, and for the console: Debian's
-# dygraphs (the page's plots), a headless browser driven by selenium, a WebSocket client and
-# promtool (prometheus) for /metrics.
+# machine's latency, openssl for DDS Security certificates, systemd for checking the units,
+# podman with compose for the container test, and for the console: Debian's dygraphs (the page's
+# plots), a headless browser driven by selenium, a WebSocket client and promtool (prometheus) for
+# /metrics.
 tests=(gnuplot-nox
   iproute2 nftables util-linux fastdds-tools rt-tests openssl systemd sqlite3 libfaketime
   podman podman-compose runc debootstrap golang-github-containernetworking-plugin-dnsname dnsmasq-base
