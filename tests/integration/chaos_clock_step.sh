@@ -12,7 +12,7 @@
 #     near 0 after the job;
 #   realtime: the server measures x's offset as the step after the job (the hosts' wall clocks
 #     now disagree by STEP); the job must either complete or fail with a reason naming axis x
-#     (seen with +2 s: x quick-stops on its watchdog, which sees the jump, and the next iteration
+#     (seen with +2 s: x quick-stops on its watchdog, which sees the jump, and the job then
 #     fails on x's silence). Then the next job runs to completion, its schedule kept across the
 #     disagreement by the measured offset.
 # Usage: chaos_clock_step.sh BUILD_DIR [STEP_SECONDS]   (skipped, 77, without libfaketime)
