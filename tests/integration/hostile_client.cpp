@@ -2,14 +2,18 @@
 // an attack that once hurt the server; it prints "PASS case: what happened" when the server
 // defends itself and "FAIL case: ..." otherwise, and exits 1 if any case failed.
 // Needs a server whose axis nodes host x and y (plant seed001, lockstep), started with
-// --max-connections MAX, and $NETMC_TOKEN_FILE naming its token file if it asks for one.
+// --max-connections MAX, and $NETMC_TOKEN_FILE naming its token file if it asks for one. Case
+// unread reads the server's memory from /proc (--server-pid); case silent connects from
+// 127.0.0.2-40 too, so the server must listen on 127.0.0.1.
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <array>
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <map>
@@ -19,6 +23,7 @@
 #include <thread>
 #include <vector>
 
+#include "server/management/access_token.hpp"
 #include "server/management/frame_codec.hpp"
 #include "server/management/management_client.hpp"
 
@@ -196,15 +201,20 @@ void many_watches() {
   unknown.set_request_id(99);
   unknown.mutable_watch()->set_job_id(std::numeric_limits<std::uint64_t>::max());
   watcher.send(unknown);
-  // The owner cancels; every watch that was taken then ends, cancelled.
+  // Once every watch is answered (the server reads requests only as fast as their answers are
+  // taken), the owner cancels; every watch that was taken then ends, cancelled.
   netmc::v1::Request cancel;
   cancel.set_request_id(2);
   cancel.mutable_cancel()->set_job_id(job_id);
-  owner.send(cancel);
+  bool cancelled = false;
   int taken = 0, refused = 0, ended = 0;
   std::string refusal, unknown_answer;
   const auto deadline = std::chrono::steady_clock::now() + 20s;
   while ((taken == 0 || ended < taken || unknown_answer.empty()) && std::chrono::steady_clock::now() < deadline) {
+    if (!cancelled && taken + refused == kWatches && !unknown_answer.empty()) {
+      owner.send(cancel);
+      cancelled = true;
+    }
     const auto response = watcher.receive(1s);
     if (!response) continue;
     if (response->request_id() == 99) {
@@ -274,15 +284,154 @@ void without_token() {
           "request without the token", parsed ? error_of(response) + ", then closed" : "no answer");
 }
 
+// The server's resident memory in MiB (VmRSS of /proc/PID/status); 0 when unknown.
+double server_rss_mib(int pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  }
+  return 0.0;
+}
+
+std::pair<std::string, std::uint16_t> server_address() {
+  const auto colon = g_server.rfind(':');
+  return {g_server.substr(0, colon), static_cast<std::uint16_t>(std::stoi(g_server.substr(colon + 1)))};
+}
+
+// A status request with the token of $NETMC_TOKEN_FILE (a raw socket adds none by itself).
+netmc::v1::Request status_with_token(std::uint64_t id) {
+  netmc::v1::Request status;
+  status.set_request_id(id);
+  status.mutable_status();
+  if (const auto token = netmc::management::client_token_from_environment()) status.set_token(token->value());
+  return status;
+}
+
+// Asks another connection for the status; how long the answer took, or why there was none.
+std::string other_client_answered() {
+  const auto started = std::chrono::steady_clock::now();
+  ManagementClient other(g_server, 5s);
+  other.send(status_with_token(2));
+  const auto answer = other.receive(5s);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+  if (!answer || answer->request_id() != 2 || answer->has_error()) return "";  // no job yet: an empty answer
+  return fmt::format("{:.0f} ms", ms);
+}
+
+// Issue 26: 623 k status requests from a client that never reads took the server to 2.9 GB.
+// A status table as a busy lab's: 16 jobs with names of the longest kind, each cancelled.
+void fill_status_table() {
+  ManagementClient owner(g_server, 5s);
+  for (int i = 0; i < 16; ++i) {
+    auto spec = long_job();
+    spec.set_name(fmt::format("{:0>256}", i));
+    const auto accepted = submit(owner, spec, 200 + static_cast<std::uint64_t>(i));
+    if (!accepted || !accepted->has_accepted()) continue;
+    netmc::v1::Request cancel;
+    cancel.set_request_id(300);
+    cancel.mutable_cancel()->set_job_id(accepted->accepted().job_id());
+    owner.send(cancel);
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    for (auto response = owner.receive(1s); std::chrono::steady_clock::now() < deadline; response = owner.receive(1s)) {
+      if (response && response->has_finished()) break;
+    }
+  }
+}
+
+void unread_answers(int server_pid, double bound_mib) {
+  fill_status_table();
+  constexpr int kRequests = 623000;
+  std::string flood;
+  for (int i = 0; i < kRequests; ++i) flood += netmc::management::encode_frame(status_with_token(100));
+  const auto [host, port] = server_address();
+  boost::asio::io_context io;
+  boost::asio::ip::tcp::socket socket(io);
+  socket.connect({boost::asio::ip::make_address(host), port});
+  socket.non_blocking(true);
+  const double rss_before = server_rss_mib(server_pid);
+  double rss_most = rss_before;
+  std::size_t written = 0;
+  const auto started = std::chrono::steady_clock::now();
+  // Writes as long as the server takes them, for 20 s at most; then 3 s more for it to work.
+  auto quiet_since = started;
+  while (std::chrono::steady_clock::now() - started < 20s && std::chrono::steady_clock::now() - quiet_since < 3s) {
+    boost::system::error_code error;
+    const std::size_t n = written < flood.size()
+                              ? socket.write_some(boost::asio::buffer(flood.data() + written, flood.size() - written), error)
+                              : 0;
+    if (error && error != boost::asio::error::would_block) break;
+    written += n;
+    if (n > 0) quiet_since = std::chrono::steady_clock::now();
+    rss_most = std::max(rss_most, server_rss_mib(server_pid));
+    if (rss_most > bound_mib) break;  // the verdict is known; spare the machine the rest
+    if (n == 0) std::this_thread::sleep_for(50ms);
+  }
+  const std::string answered = other_client_answered();
+  const double requests_written = static_cast<double>(written) / static_cast<double>(flood.size()) * kRequests;
+  verdict(rss_most > 0.0 && rss_most < bound_mib && !answered.empty(), "requests never read",
+          fmt::format("{:.0f} of {} status requests taken by the server, never read back: its VmRSS {:.0f} MiB "
+                      "before, {:.0f} MiB at most (bound {:.0f}); another client {}",
+                      requests_written, kRequests, rss_before, rss_most, bound_mib,
+                      answered.empty() ? "not answered" : "answered in " + answered));
+}
+
+// Issue 26: 32 silent connections filled the cap; "server busy" for everyone, the token's holder
+// included, for the 600 s idle timeout. From one address, then from 39 others (any 127.x reaches
+// a server on 127.0.0.1).
+void silent_connections(int authentication_timeout_s) {
+  const auto [host, port] = server_address();
+  boost::asio::io_context io;
+  std::vector<std::unique_ptr<boost::asio::ip::tcp::socket>> silent;
+  const auto open_from = [&, port = port, host = host](const std::string& source) {
+    auto socket = std::make_unique<boost::asio::ip::tcp::socket>(io);
+    socket->open(boost::asio::ip::tcp::v4());
+    socket->bind({boost::asio::ip::make_address(source), 0});
+    socket->connect({boost::asio::ip::make_address(host), port});
+    socket->non_blocking(true);
+    silent.push_back(std::move(socket));
+  };
+  const auto opened = std::chrono::steady_clock::now();
+  for (int i = 0; i < 40; ++i) open_from("127.0.0.1");
+  for (int source = 2; source <= 40; ++source) open_from("127.0.0." + std::to_string(source));
+  std::this_thread::sleep_for(300ms);
+  const std::string answered = other_client_answered();
+  verdict(!answered.empty(), "79 silent connections, then the token's holder",
+          answered.empty() ? "not answered" : "answered in " + answered);
+  const auto still_open = [](boost::asio::ip::tcp::socket& socket) {
+    std::array<char, 256> buffer{};
+    boost::system::error_code error;
+    while (!error) socket.read_some(boost::asio::buffer(buffer), error);
+    return error == boost::asio::error::would_block;
+  };
+  std::size_t open = silent.size();
+  while (open > 0 && std::chrono::steady_clock::now() - opened < std::chrono::seconds(authentication_timeout_s + 5)) {
+    std::this_thread::sleep_for(100ms);
+    open = static_cast<std::size_t>(std::count_if(silent.begin(), silent.end(), [&](auto& s) { return still_open(*s); }));
+  }
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - opened).count();
+  verdict(open == 0, "silent connections closed",
+          fmt::format("{} of {} still open {:.1f} s after they connected (the server's authentication timeout: {} s)",
+                      open, silent.size(), s, authentication_timeout_s));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"netmc_hostile_client: attacks a netmc-server's management endpoint, case by case"};
   std::vector<std::string> cases;
   int max_connections = 8;
+  int server_pid = 0;
+  double rss_bound_mib = 200.0;
+  int authentication_timeout_s = 5;
   app.add_option("--server", g_server, "HOST:PORT")->required();
   app.add_option("--max-connections", max_connections, "The server's --max-connections");
-  app.add_option("cases", cases, "files, values, cancel, disconnect, watch, connections, token (default: all but token)");
+  app.add_option("--server-pid", server_pid, "netmc-server's process id, for its memory (case unread)");
+  app.add_option("--rss-bound", rss_bound_mib, "MiB the server's VmRSS must stay under (case unread)");
+  app.add_option("--authentication-timeout", authentication_timeout_s, "The server's --authentication-timeout");
+  app.add_option("cases", cases,
+                 "files, values, cancel, disconnect, watch, connections, token, unread, silent (default: all but "
+                 "token, unread, silent)");
   CLI11_PARSE(app, argc, argv);
   if (cases.empty()) cases = {"files", "values", "cancel", "disconnect", "watch", "connections"};
   const std::map<std::string, std::function<void()>> all{
@@ -292,7 +441,9 @@ int main(int argc, char** argv) {
       {"disconnect", disconnect_cancels},
       {"watch", many_watches},
       {"connections", [&] { connection_cap(max_connections); }},
-      {"token", without_token}};
+      {"token", without_token},
+      {"unread", [&] { unread_answers(server_pid, rss_bound_mib); }},
+      {"silent", [&] { silent_connections(authentication_timeout_s); }}};
   for (const auto& name : cases) {
     const auto it = all.find(name);
     if (it == all.end()) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A hostile client of the management endpoint (tests/integration/hostile_client.cpp) against a
 # netmc-server with a token and a connection cap, two lockstep axis nodes on loopback: every
-# attack is refused or contained, the server's log says why, and it still serves afterwards.
+# attack is refused or contained (memory of answers never read, silent connections: issue 26),
+# the server's log says why, and it still serves afterwards.
 # Usage: hostile_management.sh BUILD_DIR
 set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
@@ -16,10 +17,17 @@ start x "$build/server/axis/netmc-axis" --node it-x --axes x --domain "$domain" 
 start y "$build/server/axis/netmc-axis" --node it-y --axes y --domain "$domain" --transport udp
 start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
   --max-connections 8 --token-file "$token"
+server_pid=${pids[-1]}
 port=$(server_port 127.0.0.1)
 
+# unread: 623 k status requests never read back, the server's VmRSS bound 200 MiB (issue 26: 2.9 GB);
+# silent: 79 silent connections (127.0.0.1 and 127.0.0.2-40), the token's holder still answered.
 "$build/tests/integration/netmc_hostile_client" --server "127.0.0.1:$port" --max-connections 8 \
-  files values cancel disconnect watch connections token
+  --server-pid "$server_pid" --rss-bound 200 --authentication-timeout 5 \
+  files values cancel disconnect watch connections token unread silent
+
+grep -q "closed: not authenticated within 5000 ms" "$tmp/server.log" ||
+  { echo "FAIL: the server's log does not say why it closed the silent connections"; exit 1; }
 
 grep -q "cancelled: its client disconnected" "$tmp/server.log" ||
   { echo "FAIL: the server's log does not say why the job of the vanished client ended"; exit 1; }
