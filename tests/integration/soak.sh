@@ -13,15 +13,18 @@ report=${3:-/dev/null}
 source "$(dirname "$0")/lib.sh"
 netmc=$build/client/netmc
 now_s() { date +%s; }
+# As a lab deploys realtime: the loops under SCHED_FIFO with their memory locked (root here);
+# the sweep client and everything else on the host under the normal scheduler.
+rt=(--rt-priority 80 --lock-memory)
 
 start x "$build/server/axis/netmc-axis" --node soak-x --axes x --clock realtime --domain "$domain" --transport udp \
-  --command-limit 5
+  --command-limit 5 "${rt[@]}"
 x_pid=${pids[-1]}
 start y "$build/server/axis/netmc-axis" --node soak-y --axes y --clock realtime --domain "$domain" --transport udp \
-  --command-limit 5
+  --command-limit 5 "${rt[@]}"
 y_pid=${pids[-1]}
 start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
-  --state-dir "$tmp/state"
+  --state-dir "$tmp/state" "${rt[@]}"
 server_pid=${pids[-1]}
 port=$(server_port 127.0.0.1)
 server=(--server "127.0.0.1:$port")
@@ -37,7 +40,7 @@ sample() {  # MINUTE
 
 # The sweep client: in-process sweeps, every few seconds, for the whole run.
 ( while :; do
-    "$netmc" sweep --quiet --delay-max 0.5ms:5ms:4 --iterations 3 --csv "$tmp/sweep.csv" >/dev/null 2>&1 || true
+    nice -n 10 "$netmc" sweep --quiet --delay-max 0.5ms:5ms:4 --iterations 3 --csv "$tmp/sweep.csv" >/dev/null 2>&1 || true
     sleep 5
   done ) &
 sweeper=$!
