@@ -77,8 +77,12 @@ void ContourJob::validate() const {
                                 initial_position->allFinite()),
           "initial_position: expected finite coordinates, one per axis");
   const double run_s = run_length_s();
-  require(run_s / sample_period_s <= 1e8,
-          "sample_period: too many cycles for the run length (more than 1e8)");
+  // What must be kept per cycle bounds an iteration: an ILC's previous errors, commands and
+  // directions (64 bytes a cycle) are 640 MB at 1e7 cycles; the delays are bounded apart
+  // (DelayStatistics).
+  require(run_s / sample_period_s <= 1e7,
+          "duration: expected at most 1e7 cycles per iteration (run length / sample period), got " +
+              std::to_string(run_s) + " s / " + std::to_string(sample_period_s) + " s");
   // The work ceiling of one job: 1e9 simulated cycles (about 15 minutes of one core).
   require(static_cast<double>(iterations) * (run_s / sample_period_s + 1.0) <= 1e9,
           "iterations: iterations x cycles per iteration is more than 1e9, the work ceiling of a job");

@@ -6,26 +6,6 @@
 #include "server/sim/random_streams.hpp"
 
 namespace netmc::sim {
-namespace {
-
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  const auto rank =
-      static_cast<std::size_t>(std::ceil(fraction * static_cast<double>(values.size())));
-  const std::size_t index = std::min(values.size() - 1, rank == 0 ? 0 : rank - 1);
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index),
-                   values.end());
-  return values[index];
-}
-
-double mean(const std::vector<double>& values) {
-  if (values.empty()) return 0.0;
-  double sum = 0.0;
-  for (double v : values) sum += v;
-  return sum / static_cast<double>(values.size());
-}
-
-}  // namespace
 
 ContourServer::ContourServer(const ContourJob& job)
     : job_((job.validate(), job)),
@@ -64,7 +44,6 @@ control::AxisVector ContourServer::begin_iteration(std::size_t iteration) {
   measured_ = start;
   newest_sequence_.assign(uplinks_.size(), -1);
   tau_.clear();
-  tau_.reserve(cycles_ * uplinks_.size());
   tau_sc_.clear();
   tau_cc_.clear();
   tau_ca_.clear();
@@ -122,7 +101,7 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
       if (delivery.sequence == cycle) {
         arrived = true;
         last_arrival = std::max(last_arrival, delivery.arrival_time_s);
-        tau_sc_.push_back(delivery.arrival_time_s - t);
+        tau_sc_.add(delivery.arrival_time_s - t);
       }
     }
     complete = complete && arrived;
@@ -136,7 +115,7 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   // Only a controller with internal estimates has any to keep (most cycles copy nothing).
   if (!record_.metrics.estimate_names.empty()) last_estimates_ = step.estimates;
   out.send_time_s = compute_time_ + job_.compute_delay_s;
-  tau_cc_.push_back(job_.compute_delay_s);
+  tau_cc_.add(job_.compute_delay_s);
 
   // Metrics from the true plant state and the exact contour.
   const double contour_error = contour_->contour_error(true_position_, reference);
@@ -200,15 +179,15 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
 }
 
 void ContourServer::correct_compute_delay(double measured_s) {
-  if (!tau_cc_.empty()) tau_cc_.back() = measured_s;
+  tau_cc_.replace_last(measured_s);
 }
 
 void ContourServer::record_applied(std::size_t axis, const std::vector<AppliedSetpoint>& applied) {
   for (const auto& a : applied) {
     const double loop_delay =
         a.arrival_time_s - static_cast<double>(a.sequence) * job_.sample_period_s;
-    tau_.push_back(loop_delay);
-    tau_ca_.push_back(a.arrival_time_s - a.send_time_s);
+    tau_.add(loop_delay);
+    tau_ca_.add(a.arrival_time_s - a.send_time_s);
     if (axis == 0) latest_tau_s_ = loop_delay;
     if (job_.record_traces && axis == 0 && a.sequence < record_.trace.size()) {
       record_.trace[a.sequence].tau_s = loop_delay;
@@ -253,15 +232,14 @@ IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
                            last_estimates_.begin() + static_cast<std::ptrdiff_t>(m.estimate_names.size()));
   m.lost_setpoints = lost_setpoints;
   m.stale_setpoints = stale_setpoints;
-  m.tau_mean_s = mean(tau_);
-  m.tau_max_s = tau_.empty() ? 0.0 : *std::max_element(tau_.begin(), tau_.end());
-  m.tau_p50_s = percentile(tau_, 0.50);
-  m.tau_p99_s = percentile(tau_, 0.99);
-  const auto summarize = [](const std::vector<double>& values, double& mean_s, double& p99_s,
-                            double& max_s) {
-    mean_s = mean(values);
-    p99_s = percentile(values, 0.99);
-    max_s = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+  m.tau_mean_s = tau_.mean();
+  m.tau_max_s = tau_.max();
+  m.tau_p50_s = tau_.percentile(0.50);
+  m.tau_p99_s = tau_.percentile(0.99);
+  const auto summarize = [](const DelayStatistics& values, double& mean_s, double& p99_s, double& max_s) {
+    mean_s = values.mean();
+    p99_s = values.percentile(0.99);
+    max_s = values.max();
   };
   summarize(tau_sc_, m.tau_sc_mean_s, m.tau_sc_p99_s, m.tau_sc_max_s);
   summarize(tau_cc_, m.tau_cc_mean_s, m.tau_cc_p99_s, m.tau_cc_max_s);

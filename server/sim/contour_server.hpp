@@ -14,6 +14,7 @@
 #include "server/sim/axis_endpoint.hpp"
 #include "server/sim/contour_job.hpp"
 #include "server/sim/cycle_listener.hpp"
+#include "server/sim/delay_statistics.hpp"
 #include "server/sim/iteration_metrics.hpp"
 
 namespace netmc::sim {
@@ -74,7 +75,7 @@ class ContourServer {
   control::AxisVector true_position_;
   control::AxisVector measured_;
   std::vector<std::int64_t> newest_sequence_;
-  std::vector<double> tau_, tau_sc_, tau_cc_, tau_ca_;
+  DelayStatistics tau_, tau_sc_, tau_cc_, tau_ca_;  // bounded however long the iteration
   double squared_error_sum_ = 0.0;
   double steady_squared_sum_ = 0.0;
   std::size_t steady_samples_ = 0;

@@ -159,3 +159,22 @@ TEST(ReferenceLimits, TheStartingPointIsInTheWorkspace) {
 
 }  // namespace
 }  // namespace netmc::job
+
+namespace netmc::job {
+namespace {
+
+// What an iteration stores per cycle (an ILC's previous errors and commands) bounds its length.
+TEST(RunLengthLimits, AnIterationOfMoreThan1e7CyclesIsRefused) {
+  auto spec = parse_job_spec_json(R"({"trajectory": {"circle": {"radius_m": 0.01, "period_s": 8}},
+                                      "controller": {"name": "adrc"}, "sample_period_s": 0.005})", "test");
+  apply_defaults(spec);
+  spec.set_duration_s(50000.0);  // 1e7 cycles of 5 ms
+  EXPECT_EQ(error_of(spec), "");
+  spec.set_duration_s(200000.0);
+  EXPECT_EQ(error_of(spec),
+            "duration: expected at most 1e7 cycles per iteration (run length / sample period), got 200000.000000 s / "
+            "0.005000 s");
+}
+
+}  // namespace
+}  // namespace netmc::job
