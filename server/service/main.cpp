@@ -76,6 +76,11 @@ int main(int argc, char** argv) {
   double keep_days = 90.0;
   app.add_option("--keep-days", keep_days, "With --state-dir: ended jobs older than this are deleted")
       ->check(CLI::Range(0.001, 36500.0));
+  int hold_wait_ms = 15000;
+  app.add_option("--hold-wait", hold_wait_ms,
+                 "Milliseconds a job waits for an axis another server holds (a restarted server's predecessor holds "
+                 "its axes for the nodes' 10 s lease); 0: refuse at once")
+      ->check(CLI::Range(0, 600000));
   netmc::management::ManagementLimits limits;
   int max_connections = static_cast<int>(limits.max_connections);
   app.add_option("--max-connections", max_connections,
@@ -199,6 +204,7 @@ int main(int argc, char** argv) {
     options.max_running_jobs = static_cast<std::size_t>(max_running_jobs);
     options.max_queued_jobs = static_cast<std::size_t>(max_queued_jobs);
     options.positioning_timeout = std::chrono::milliseconds(positioning_timeout_ms);
+    options.foreign_hold_wait = std::chrono::milliseconds(hold_wait_ms);
     options.admin_token_configured = !admin_token_file.empty();
     for (const auto& path : allowed_plugins) {
       try {

@@ -56,7 +56,7 @@ echo "iteration logs on the DDS topic: $logs samples from $jobs_logged jobs (exp
 [ "$logs" -eq 30 ] && [ "$jobs_logged" -eq 15 ] || { echo "FAIL: iteration logs missing"; exit 1; }
 
 # A second server on the same domain; each runs a job on its own axes at the same time.
-lab_start serverB - -- "$server_bin" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+lab_start serverB - -- "$server_bin" --listen 127.0.0.1:0 --domain "$domain" --transport udp --hold-wait 0
 lab_wait_log serverB 'listening on' 10
 portB=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/serverB.log")
 serverB=$(sed -n 's/.*, server \([0-9a-f]*\),.*/\1/p' "$tmp/serverB.log")
