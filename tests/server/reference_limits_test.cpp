@@ -1,4 +1,4 @@
-// Every number of a job's reference within a physical range (README, "Job spec limits"): absurd
+// Every number of a job's reference within a physical range (docs/operations/hostile-networks-and-clients.md, "Job spec limits"): absurd
 // values are refused with one message naming the field and the range, before anything runs.
 #include <gtest/gtest.h>
 
