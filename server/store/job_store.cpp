@@ -160,9 +160,14 @@ StoredJob read_job_columns(const Statement& row) {
   return job;
 }
 
-constexpr const char* kJobColumns =
-    "id, label, owner, spec, iterations_total, keep_after_disconnect, state, error, accepted_unix_s, ended_unix_s, "
-    "result_header, finished, (SELECT count(*) FROM iterations WHERE job_id = jobs.id)";
+// The columns read_job_columns() takes; the blobs a reader does not need are not read at all
+// (a spec may be megabytes, and netmc jobs lists up to 10 000).
+std::string job_columns(bool with_spec, bool with_result) {
+  return std::string("id, label, owner, ") + (with_spec ? "spec" : "NULL") +
+         ", iterations_total, keep_after_disconnect, state, error, accepted_unix_s, ended_unix_s, " +
+         (with_result ? "result_header, finished" : "NULL, NULL") +
+         ", (SELECT count(*) FROM iterations WHERE job_id = jobs.id)";
+}
 
 }  // namespace
 
@@ -235,8 +240,7 @@ JobStore::~JobStore() {
 JobStore::Contents JobStore::load(std::size_t history) {
   std::lock_guard lock(reader_mutex_);
   Contents contents;
-  const std::string columns = kJobColumns;
-  Statement unfinished(reader_db_, ("SELECT " + columns + " FROM jobs WHERE state IN ('queued', 'running') ORDER BY id").c_str());
+  Statement unfinished(reader_db_, ("SELECT " + job_columns(true, true) + " FROM jobs WHERE state IN ('queued', 'running') ORDER BY id").c_str());
   while (unfinished.step()) contents.unfinished.push_back(read_job_columns(unfinished));
   for (auto& job : contents.unfinished) {
     Statement iterations(reader_db_, "SELECT iteration, metrics FROM iterations WHERE job_id = ? ORDER BY iteration");
@@ -245,14 +249,12 @@ JobStore::Contents JobStore::load(std::size_t history) {
       job.iterations.push_back({static_cast<std::uint32_t>(iterations.integer(0)), iterations.bytes(1)});
     }
   }
-  Statement ended(reader_db_, ("SELECT * FROM (SELECT " + columns +
+  // An ended job needs no spec in memory.
+  Statement ended(reader_db_, ("SELECT * FROM (SELECT " + job_columns(false, true) +
                                " FROM jobs WHERE state NOT IN ('queued', 'running') ORDER BY id DESC LIMIT ?) ORDER BY id")
                                   .c_str());
   ended.bind(1, static_cast<std::int64_t>(history));
-  while (ended.step()) {
-    contents.ended.push_back(read_job_columns(ended));
-    contents.ended.back().spec.clear();  // an ended job needs no spec in memory
-  }
+  while (ended.step()) contents.ended.push_back(read_job_columns(ended));
   return contents;
 }
 
@@ -360,19 +362,14 @@ void JobStore::ended(std::uint64_t id, const std::string& state, const std::stri
 
 std::vector<StoredJob> JobStore::list(const JobFilter& filter) {
   std::lock_guard lock(reader_mutex_);
-  Statement query(reader_db_, (std::string("SELECT ") + kJobColumns +
+  Statement query(reader_db_, ("SELECT " + job_columns(false, false) +
                                " FROM jobs WHERE (?1 = '' OR state = ?1) AND (?2 = '' OR instr(label, ?2) > 0)"
                                " AND accepted_unix_s >= ?3 ORDER BY id DESC LIMIT ?4")
                                   .c_str());
   query.bind_text(1, filter.state).bind_text(2, filter.label_contains).bind(3, filter.since_unix_s);
   query.bind(4, static_cast<std::int64_t>(filter.limit));
   std::vector<StoredJob> jobs;
-  while (query.step()) {
-    jobs.push_back(read_job_columns(query));
-    jobs.back().spec.clear();
-    jobs.back().finished.clear();
-    jobs.back().result_header.clear();
-  }
+  while (query.step()) jobs.push_back(read_job_columns(query));
   return jobs;
 }
 
