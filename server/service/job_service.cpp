@@ -704,6 +704,14 @@ void JobService::run(const std::shared_ptr<Job>& shared_job) {
                        ? fmt::format(", {} deadline misses", record.metrics.deadline_misses)
                        : std::string());
     };
+    // Either clock's runner: its description kept, its cycles counted, the console's live view.
+    const auto run_with = [&](auto& runner) {
+      *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
+      if (options_.store) options_.store->started(job.id, done.result().SerializeAsString());
+      job_cycles = runner.cycles();
+      if (auto live = options_.live_cycles ? options_.live_cycles(job.id) : nullptr) runner.set_cycle_listener(live);
+      runner.run(on_iteration, job.cancel);
+    };
     if (realtime) {
       // Before the first iteration every node's clock must have been measured a few times.
       const auto deadline = std::chrono::steady_clock::now() + options_.discovery_timeout;
@@ -722,18 +730,10 @@ void JobService::run(const std::shared_ptr<Job>& shared_job) {
       };
       RealtimeDdsRunner runner(channels, job.spec, job.id, {options_.axis_timeout, options_.silence_limit, options_.positioning_timeout},
                                clocks_.time_base(), offsets, options_.build_options());
-      *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
-      if (options_.store) options_.store->started(job.id, done.result().SerializeAsString());
-      job_cycles = runner.cycles();
-      if (auto live = options_.live_cycles ? options_.live_cycles(job.id) : nullptr) runner.set_cycle_listener(live);
-      runner.run(on_iteration, job.cancel);
+      run_with(runner);
     } else {
       LockstepDdsRunner runner(channels, job.spec, job.id, options_.axis_timeout, options_.build_options());
-      *done.mutable_result() = job::describe_run(job.spec, runner.controller_description());
-      if (options_.store) options_.store->started(job.id, done.result().SerializeAsString());
-      job_cycles = runner.cycles();
-      if (auto live = options_.live_cycles ? options_.live_cycles(job.id) : nullptr) runner.set_cycle_listener(live);
-      runner.run(on_iteration, job.cancel);
+      run_with(runner);
     }
     if (job.cancel.load()) state = "cancelled";
   } catch (const std::exception& error) {
