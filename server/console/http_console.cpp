@@ -152,8 +152,8 @@ class LiveSession : public std::enable_shared_from_this<LiveSession<Stream>> {
     ws_.text(true);
     ws_.async_write(asio::buffer(*queue_.front()), [self = this->shared_from_this()](beast::error_code error, std::size_t) {
       self->writing_ = false;
-      self->queue_.pop_front();
-      if (error) {
+      self->queue_.pop_front();  // the message just written: close() leaves it in place
+      if (error || self->closed_) {
         self->close();
         return;
       }
@@ -164,7 +164,8 @@ class LiveSession : public std::enable_shared_from_this<LiveSession<Stream>> {
   void close() {
     if (closed_) return;
     closed_ = true;
-    queue_.clear();
+    // A write still in flight reads from the front message and pops it when it completes.
+    queue_.erase(writing_ ? std::next(queue_.begin()) : queue_.begin(), queue_.end());
     if (subscribed_) state().console.unsubscribe(subscription_);
     subscribed_ = false;
   }

@@ -11,6 +11,7 @@ import base64
 import os
 import random
 import socket
+import struct
 import sys
 import time
 
@@ -206,7 +207,15 @@ def main():
     while time.time() < end:
         time.sleep(0.5)
         samples.append(rss_kib(pid))
+    # Its leaving, in the order that once crashed the server: the read side ends (FIN) while a
+    # write to it is still pending, then the connection is reset under that write.
+    stuck.shutdown(socket.SHUT_WR)
+    time.sleep(0.5)
+    stuck.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack("ii", 1, 0))
     stuck.close()
+    time.sleep(0.5)
+    if not os.path.exists(f"/proc/{pid}") or "zombie" in open(f"/proc/{pid}/status").read():
+        fail("the server died when a WebSocket reader left in the middle of a write")
     grown = max(samples) - start_rss
     print(f"a WebSocket reader that never read for {slow_seconds:.0f} s: server RSS {start_rss} -> max {max(samples)} KiB "
           f"(+{grown} KiB)")
