@@ -23,12 +23,10 @@ constexpr int kSettledReads = 3;
 // How long the operator's reset of a drive that does not answer is tried again.
 constexpr std::chrono::seconds kResetRetry{5};
 
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  const auto index = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index), values.end());
-  return values[index];
-}
+// Feedback send times kept for timing round trips: 4 s at 1 kHz, far beyond any watchdog.
+constexpr std::size_t kFeedbackTimes = 4096;
+// Setpoints in flight whose server send time is kept (tau_ca); more is not a loop but a flood.
+constexpr std::size_t kMaxSetpointsInFlight = 4096;
 
 bool ramping(drive::PowerState state) {
   return state == drive::PowerState::quick_stop_active || state == drive::PowerState::fault_reaction_active;
@@ -492,12 +490,12 @@ void RealtimeAxisNode::begin(OwnedAxis& axis, const netmc::dds::JobControl& cont
   axis.commands_received = 0;
   axis.server_send_times.clear();
   axis.applied_since_sample.clear();
-  axis.feedback_sent.assign(axis.cycles, Clock::time_point{});
+  axis.feedback_sent.assign(kFeedbackTimes, OwnedAxis::FeedbackTime{});
   axis.newest_timed = -1;
   axis.round_trips_s.clear();
   axis.wake_late_s.clear();
-  axis.round_trips_s.reserve(axis.cycles);
-  axis.wake_late_s.reserve(axis.cycles);
+  axis.round_trips_s.reserve_for(axis.cycles);
+  axis.wake_late_s.reserve_for(axis.cycles);
   schedule(axis);
 }
 
@@ -542,13 +540,15 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   if (!std::isfinite(setpoint.send_time_s()) || setpoint.cycle() >= axis.cycles) return;
   const auto arrived = Clock::now();
   const auto cycle = static_cast<std::int64_t>(setpoint.cycle());
-  if (cycle > axis.newest_timed && axis.feedback_sent[setpoint.cycle()] != Clock::time_point{}) {
-    axis.round_trips_s.push_back(std::chrono::duration<double>(arrived - axis.feedback_sent[setpoint.cycle()]).count());
+  const auto& sent = axis.feedback_sent[setpoint.cycle() % kFeedbackTimes];
+  if (cycle > axis.newest_timed && sent.cycle == setpoint.cycle() && sent.sent != Clock::time_point{}) {
+    axis.round_trips_s.add(std::chrono::duration<double>(arrived - sent.sent).count());
     axis.newest_timed = cycle;
   }
   // The setpoint leaves for the actuator now: netsim's downlink delay starts here.
   const double now = link_.now_s() - axis.start_time_s;
   axis.endpoint->submit_setpoint(now, setpoint.cycle(), setpoint.command());
+  if (axis.server_send_times.size() >= kMaxSetpointsInFlight) axis.server_send_times.erase(axis.server_send_times.begin());
   axis.server_send_times[setpoint.cycle()] = setpoint.send_time_s();
   axis.last_setpoint_s = now;
   ++axis.commands_received;
@@ -574,7 +574,7 @@ void RealtimeAxisNode::report_fault(const std::string& axis_name, OwnedAxis& axi
 }
 
 void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clock::time_point now) {
-  axis.wake_late_s.push_back(std::chrono::duration<double>(now - axis.next_sample).count());
+  axis.wake_late_s.add(std::chrono::duration<double>(now - axis.next_sample).count());
   const std::uint64_t k = axis.next_cycle;
   const double t = static_cast<double>(k) * axis.sample_period_s;
   netmc::dds::Feedback feedback;
@@ -613,7 +613,7 @@ void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clo
   feedback.lost_setpoints(axis.endpoint->lost_setpoints());
   feedback.stale_setpoints(axis.endpoint->stale_setpoints());
   link_.publish(feedback);
-  axis.feedback_sent[k] = Clock::now();
+  axis.feedback_sent[k % kFeedbackTimes] = OwnedAxis::FeedbackTime{k, Clock::now()};
   ++axis.samples;
   ++axis.next_cycle;
   if (axis.next_cycle < axis.cycles) schedule(axis);
@@ -642,10 +642,9 @@ void RealtimeAxisNode::end_iteration(const std::string& axis_name, OwnedAxis& ax
                    "p99 {:.0f} us; round trip feedback->setpoint p50 {:.0f} us p99 {:.0f} us max {:.0f} us ({} "
                    "setpoints){}{}",
                    axis_name, axis.job_id, axis.iteration, axis.samples,
-                   percentile(axis.wake_late_s, 0.50) * us, percentile(axis.wake_late_s, 0.99) * us,
-                   percentile(axis.round_trips_s, 0.50) * us, percentile(axis.round_trips_s, 0.99) * us,
-                   axis.round_trips_s.empty() ? 0.0 : *std::max_element(axis.round_trips_s.begin(), axis.round_trips_s.end()) * us,
-                   axis.round_trips_s.size(), exchanges.empty() ? "" : "; ", exchanges);
+                   axis.wake_late_s.percentile(0.50) * us, axis.wake_late_s.percentile(0.99) * us,
+                   axis.round_trips_s.percentile(0.50) * us, axis.round_trips_s.percentile(0.99) * us,
+                   axis.round_trips_s.max() * us, axis.round_trips_s.size(), exchanges.empty() ? "" : "; ", exchanges);
 }
 
 }  // namespace netmc::axis

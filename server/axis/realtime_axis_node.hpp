@@ -28,6 +28,7 @@
 #include "server/axis/axis_node_link.hpp"
 #include "server/axis/pending_job_starts.hpp"
 #include "server/drive/point_to_point_move.hpp"
+#include "server/sim/delay_statistics.hpp"
 
 namespace netmc::axis {
 
@@ -79,13 +80,18 @@ class RealtimeAxisNode {
     // Server departure time of each setpoint in flight: tau_ca then includes the real DDS
     // latency, not only the emulated part that starts when the sample reaches this node.
     std::map<std::uint64_t, double> server_send_times;
-    // Round trip of the loop on this node's clock: feedback k written -> setpoint k in. By
-    // cycle, sized once per iteration (nothing allocated in a cycle); a setpoint older than the
-    // newest one timed is not timed.
-    std::vector<Clock::time_point> feedback_sent;
+    // Round trip of the loop on this node's clock: feedback k written -> setpoint k in. The
+    // newest kFeedbackTimes cycles' send times, by cycle modulo their number; a setpoint older
+    // than that, or than the newest one timed, is not timed. Sized once for the node's life.
+    struct FeedbackTime {
+      std::uint64_t cycle = 0;
+      Clock::time_point sent;
+    };
+    std::vector<FeedbackTime> feedback_sent;
     std::int64_t newest_timed = -1;
-    std::vector<double> round_trips_s;
-    std::vector<double> wake_late_s;  // how late each sample was taken after its due time
+    // Reserved when an iteration starts (nothing allocated in a cycle), bounded however long.
+    sim::DelayStatistics round_trips_s;
+    sim::DelayStatistics wake_late_s;  // how late each sample was taken after its due time
     // Hardware: setpoints written as they arrived, reported with the next sample.
     std::vector<sim::AppliedSetpoint> applied_since_sample;
     drive::PowerState reported_state = drive::PowerState::not_ready_to_switch_on;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace netmc::sim {
 namespace {
@@ -22,8 +23,18 @@ void DelayStatistics::clear() {
   bins_.shrink_to_fit();
   count_ = 0;
   sum_ = 0.0;
-  max_ = 0.0;
+  max_ = -std::numeric_limits<double>::infinity();
   has_pending_ = false;
+}
+
+void DelayStatistics::reserve_for(std::size_t samples) {
+  if (count_ != 0) return;
+  if (samples <= kExactSamples) {
+    exact_.reserve(samples);
+  } else {
+    std::vector<double>().swap(exact_);
+    bins_.assign(2 * kBinsPerSign + 1, 0);
+  }
 }
 
 void DelayStatistics::add(double value_s) {

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace netmc::sim {
@@ -15,6 +16,9 @@ class DelayStatistics {
   static constexpr std::size_t kExactSamples = std::size_t{1} << 21;
 
   void clear();
+  // Room for an iteration of `samples` made before it starts, so that adding them allocates
+  // nothing (a realtime loop): the exact vector if they fit, else the histogram from the first.
+  void reserve_for(std::size_t samples);
   void add(double value_s);
   // The newest sample measured again (a realtime cycle's compute delay once it is known).
   void replace_last(double value_s);
@@ -36,7 +40,7 @@ class DelayStatistics {
   std::vector<std::uint64_t> bins_;  // counts once there are many
   std::size_t count_ = 0;
   double sum_ = 0.0;
-  double max_ = 0.0;
+  double max_ = -std::numeric_limits<double>::infinity();  // of the binned samples
   bool has_pending_ = false;         // the newest sample, not yet committed (replace_last)
   double pending_ = 0.0;
 };

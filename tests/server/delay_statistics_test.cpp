@@ -66,5 +66,38 @@ TEST(DelayStatistics, ManySamplesAreBinnedWithinTheirResolution) {
   EXPECT_EQ(statistics.percentile(0.5), 0.0);
 }
 
+// Reserved for an iteration's length beforehand (the axis node's loop allocates nothing while
+// it runs): the same numbers as growing into them, bit for bit, binned from the first sample
+// when the iteration is long.
+TEST(DelayStatistics, ReservedForTheIterationGivesTheSameNumbersAsGrowing) {
+  for (const std::size_t count : {std::size_t{10001}, DelayStatistics::kExactSamples + 1000}) {
+    std::mt19937_64 random(13);
+    std::exponential_distribution<double> delay(1.0 / 2e-3);
+    DelayStatistics grown;
+    DelayStatistics reserved;
+    reserved.reserve_for(count);
+    EXPECT_EQ(reserved.binned(), count > DelayStatistics::kExactSamples) << count;
+    for (std::size_t i = 0; i < count; ++i) {
+      const double value = delay(random) - 3e-3;  // negatives too: the maximum may be one
+      grown.add(value);
+      reserved.add(value);
+    }
+    ASSERT_EQ(reserved.binned(), grown.binned()) << count;
+    EXPECT_EQ(reserved.size(), count);
+    EXPECT_EQ(reserved.mean(), grown.mean()) << count;
+    EXPECT_EQ(reserved.max(), grown.max()) << count;
+    for (const double fraction : {0.01, 0.5, 0.99}) {
+      EXPECT_EQ(reserved.percentile(fraction), grown.percentile(fraction)) << count << " " << fraction;
+    }
+  }
+}
+
+TEST(DelayStatistics, TheMaximumOfNegativeSamplesIsTheirOwn) {
+  DelayStatistics statistics;
+  statistics.reserve_for(DelayStatistics::kExactSamples + 1);  // binned
+  for (const double value : {-3e-3, -1e-3, -2e-3}) statistics.add(value);
+  EXPECT_EQ(statistics.max(), -1e-3);
+}
+
 }  // namespace
 }  // namespace netmc::sim
