@@ -605,8 +605,23 @@ void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clo
   if (k > 0 && !axis.holding && t - axis.last_setpoint_s > std::chrono::duration<double>(watchdog_).count()) {
     axis.endpoint->hold();
     axis.holding = true;
+    const double silent_ms = (t - axis.last_setpoint_s) * 1e3;
     spdlog::warn("axis {} job {} iteration {}: no setpoint for {:.0f} ms at cycle {}: quick stop", axis_name,
-                 axis.job_id, axis.iteration, (t - axis.last_setpoint_s) * 1e3, k);
+                 axis.job_id, axis.iteration, silent_ms, k);
+    // The iteration cannot go on with this axis stopped: the server ends the job (its other axes
+    // stop as commanded) instead of running its loops on to a completion that means nothing, or
+    // winding them up until a command trips an axis. Not latched: the next job may run.
+    netmc::dds::AxisEvent event;
+    event.axis(axis_name);
+    event.server(axis.server);
+    event.job_id(axis.job_id);
+    event.iteration(axis.iteration);
+    event.kind(netmc::dds::AXIS_FAULT);
+    event.detail(fmt::format("quick stop after {:.0f} ms without a setpoint, at cycle {} of iteration {} (the node's "
+                             "watchdog, netmc-axis --watchdog {} ms)",
+                             silent_ms, k, axis.iteration, watchdog_.count())
+                     .substr(0, 255));
+    link_.publish_event(event);
   }
   if (axis.endpoint->fault()) report_fault(axis_name, axis);  // before the sample
   set_sample(feedback, k, t, axis.endpoint->sample());
