@@ -1,0 +1,74 @@
+#!/usr/bin/python3
+"""Every relative link of README.md and docs/ resolves: the file exists in the repository and,
+for a link to a heading (page.md#heading), the page has that heading (GitHub's anchor rule).
+
+Usage: check_links.py REPOSITORY_ROOT
+Exit 0 when all resolve; 1 with each broken link named (file:line: target).
+"""
+import os
+import re
+import sys
+
+LINK = re.compile(r"\]\(([^)\s]+)\)")
+FENCE = re.compile(r"^\s*```")
+
+
+def anchors(path):
+    """GitHub's anchors of a Markdown file's headings: lower case, punctuation dropped, spaces to -."""
+    found = set()
+    fenced = False
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            if FENCE.match(line):
+                fenced = not fenced
+                continue
+            if fenced or not line.startswith("#"):
+                continue
+            title = line.lstrip("#").strip().lower()
+            slug = re.sub(r"[^\w\- ]", "", title).replace(" ", "-")
+            found.add(slug)
+    return found
+
+
+def pages(root):
+    yield os.path.join(root, "README.md")
+    for folder, _, files in os.walk(os.path.join(root, "docs")):
+        for name in sorted(files):
+            if name.endswith(".md"):
+                yield os.path.join(folder, name)
+
+
+def main():
+    root = os.path.abspath(sys.argv[1])
+    broken = []
+    checked = 0
+    for page in pages(root):
+        fenced = False
+        with open(page, encoding="utf-8") as f:
+            for number, line in enumerate(f, 1):
+                if FENCE.match(line):
+                    fenced = not fenced
+                    continue
+                if fenced:
+                    continue
+                for target in LINK.findall(line):
+                    if re.match(r"^[a-z]+:", target):
+                        continue  # http:, https:, mailto: are not this repository's
+                    path, _, fragment = target.partition("#")
+                    resolved = os.path.normpath(os.path.join(os.path.dirname(page), path)) if path else page
+                    checked += 1
+                    where = f"{os.path.relpath(page, root)}:{number}: {target}"
+                    if not resolved.startswith(root + os.sep) and resolved != root:
+                        broken.append(f"{where} (outside the repository)")
+                    elif not os.path.exists(resolved):
+                        broken.append(f"{where} (no such file)")
+                    elif fragment and resolved.endswith(".md") and fragment not in anchors(resolved):
+                        broken.append(f"{where} (no such heading)")
+    for line in broken:
+        print(line)
+    print(f"{checked} relative links checked, {len(broken)} broken")
+    return 1 if broken else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
