@@ -45,7 +45,7 @@ Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
   const auto run_cee = add_cee_command(app);
   const auto run_qft = add_qft_command(app);
   app.get_subcommand("run")->footer(R"(Examples:
-  # with netmc-server and two netmc-axis nodes running (README "Distributed runs")
+  # with netmc-server and two netmc-axis nodes running (docs/operations/distributed-runs.md)
   netmc run --server 127.0.0.1:7300                          # paper 001's study in lockstep
   netmc run --server 127.0.0.1:7300 --controller adrc+ilccc --iterations 5 --json run.json
   netmc run --server 127.0.0.1:7300 --clock realtime         # nodes started with --clock realtime

@@ -16,7 +16,7 @@ namespace {
 constexpr std::uint32_t kSeed001Iterations = 20;
 
 // Paper 001's three controllers plus its PD-ILC with a zero-phase Q-filter: the paper's law is
-// not monotonically convergent and drifts upwards after some tens of iterations (README).
+// not monotonically convergent and drifts upwards after some tens of iterations (docs/user-guide/default-study.md).
 constexpr double kQFilterCutoffHz = 20.0;
 
 StudyPlan seed001_study(const std::string& title, const netmc::v1::Trajectory* trajectory,
@@ -556,7 +556,7 @@ StudyPlan seed004() {
 // Paper 002, Tables 1 and 2: the ball-screw table (eq. 1; 3 kg load: J + m rg^2 through the
 // plant's load_kg), T = 1 ms, Steffensen foot point, C4 = mfa-dtsmc and C3 = mfac with the paper's
 // gains but data_model "full": a full-form (L_y = 2, d = 1) data model, not the paper's compact
-// form (with eq. 9 both laws diverge within 20 ms; README). Digest 3.7 [A]: circle R = 50 mm about
+// form (with eq. 9 both laws diverge within 20 ms; docs/reproductions.md). Digest 3.7 [A]: circle R = 50 mm about
 // (75, 75) mm, 5 s per revolution, 2 revolutions; heart scale 2.5 mm about (75, 75) mm, 10 s.
 netmc::v1::JobSpec seed002_job(const netmc::v1::Trajectory& trajectory, double duration_s, double load_kg,
                                const std::string& controller, const std::string& label) {

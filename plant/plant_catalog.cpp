@@ -13,14 +13,14 @@
 #include "plant/linear_motor_axis.hpp"
 #include "plant/resonant_stage_axis.hpp"
 
-// Parameter choices (SI inside; the sources by their short names, README "Plant for paper 001"):
+// Parameter choices (SI inside; the sources by their short names, docs/user-guide/default-study.md, "Plant for paper 001"):
 //
 // seed001 -- paper 001, eq. 3. The paper gives no plant numbers (digest 1.7 [G]); the digest's
 //   [A] default is a servo in speed mode, in mm: X a1=0, a2=-20, b=20, d=-50 tanh(x'/0.05) mm/s^2;
 //   Y a1=0, a2=-10, b=10, d=-70 tanh(y'/0.05) mm/s^2. In metres the friction becomes
 //   0.050 / 0.070 m/s^2 with a velocity scale of 5e-5 m/s; a1, a2, b are unit-free in length
 //   (b multiplies the command, whose unit the paper leaves open).
-//   Calibrated here (README, "Plant for paper 001"): velocity scale 1 mm/s and levels 60 / 85
+//   Calibrated here (docs/user-guide/default-study.md, "Plant for paper 001"): velocity scale 1 mm/s and levels 60 / 85
 //   mm/s^2 give ADRC-only e_max = 0.083 mm (paper: 0.0811 mm). With the digest's 0.05 mm/s the
 //   friction is almost a step at each velocity reversal; the paper's PD-ILC then stalls at
 //   e_max/ADRC = 0.47 after 11 iterations and drifts upwards.

@@ -58,7 +58,7 @@ struct DdsOptions {
 
 enum class Delivery { stream, exchange, control, log, status };
 
-// Lab-size limits (README "Distributed runs"): instances per keyed topic, i.e. axes, nodes,
+// Lab-size limits (docs/operations/distributed-runs.md): instances per keyed topic, i.e. axes, nodes,
 // or jobs whose iteration logs a reader keeps.
 inline constexpr int kMaxInstances = 4096;
 // Participants on one host that find each other by unicast on loopback.

@@ -437,7 +437,7 @@ void apply_defaults(netmc::v1::JobSpec& spec) {
 
 namespace {
 
-// The documented ranges of a spec's scalar fields (README, "Job spec limits"), checked before
+// The documented ranges of a spec's scalar fields (docs/operations/hostile-networks-and-clients.md, "Job spec limits"), checked before
 // anything is built, so an absurd spec costs nothing.
 void check_ranges(const netmc::v1::JobSpec& spec) {
   const auto require = [](double value, double low, double high, const std::string& field, const std::string& unit) {

@@ -24,7 +24,7 @@ void rename_axes(netmc::v1::JobSpec& spec, const std::vector<std::string>& names
 void check_name(const std::string& name, const std::string& field);
 // Fills the defaults of paper 001 where the spec leaves a field unset.
 void apply_defaults(netmc::v1::JobSpec& spec);
-// Limits of a spec (README, "Job spec limits"); the other scalar fields' ranges are there too.
+// Limits of a spec (docs/operations/hostile-networks-and-clients.md, "Job spec limits"); the other scalar fields' ranges are there too.
 inline constexpr std::size_t kMaxJobNameBytes = 256;
 inline constexpr std::uint32_t kMaxIterations = 10000;
 

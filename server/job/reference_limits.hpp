@@ -1,5 +1,5 @@
 #pragma once
-// The physical ranges of every number of a job's reference (README, "Job spec limits"): a
+// The physical ranges of every number of a job's reference (docs/operations/hostile-networks-and-clients.md, "Job spec limits"): a
 // reference outside them describes no motion a lab stage makes, and numbers such as 1e308 m or a
 // 1e-300 s period only overflow or divide by nothing downstream.
 

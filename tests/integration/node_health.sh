@@ -12,7 +12,7 @@ source "$(dirname "$0")/lab.sh"
 axis_bin=$build/server/axis/netmc-axis
 netmc=$build/client/netmc
 node() { "$axis_bin" --clock "$clock" --domain "$domain" --transport udp "$@"; }
-bound_ms=3500   # README "Distributed runs": a dead node leaves the list within 3.5 s
+bound_ms=3500   # docs/operations/distributed-runs.md: a dead node leaves the list within 3.5 s
 
 lab_start x - -- "$axis_bin" --clock "$clock" --domain "$domain" --transport udp --node hx --axes x
 lab_start y - -- "$axis_bin" --clock "$clock" --domain "$domain" --transport udp --node hy --axes y

@@ -56,8 +56,9 @@ TEST(Seed001Study, IlcLearnsAndStaysBoundedOver50Iterations) {
 }
 
 TEST(Seed001Study, PaperLawWithoutQFilterDivergesSlowly) {
-  // Where the method breaks down (README): the PD law of eq. 14 is not monotonically convergent
-  // on this relative-degree-2 loop; after its best iteration the error grows again.
+  // Where the method breaks down (docs/user-guide/default-study.md): the PD law of eq. 14 is not
+  // monotonically convergent on this relative-degree-2 loop; after its best iteration the error
+  // grows again.
   StudyPlan plan = make_preset("seed001");
   plan.jobs = {plan.jobs[2]};
   plan.jobs[0].set_iterations(100);
