@@ -76,7 +76,7 @@ void control_step(benchmark::State& state, const std::string& controller_name) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
 }
 
-// One in-loop contour-error estimate on paper 002's heart (digest 3.7 [A]): the axis lags the
+// One in-loop contour-error estimate on paper 002's heart (netmc's assumed size and period): the axis lags the
 // desired point by 10 ms along the path and sits 50 um off it, a fresh desired time each call
 // (2000 along the period). `netmc cee` explains the order: the cost follows curve evaluations.
 void contour_error_estimate(benchmark::State& state, const char* estimator_name) {

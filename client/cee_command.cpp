@@ -116,7 +116,7 @@ std::function<int()> add_cee_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 1e6));
   cee->add_option("--seed", flags->seed, "Random seed");
   return [flags]() -> int {
-    // Paper 002's contours as the design digest assumes them (3.7 [A]).
+    // Paper 002's contours (section 6.3 gives no sizes or speeds: netmc's assumptions).
     std::vector<std::unique_ptr<control::ReferenceTrajectory>> contours;
     contours.push_back(std::make_unique<control::CircleTrajectory>(
         control::CircleParameters{{0.075, 0.075}, 0.050, 5.0}));

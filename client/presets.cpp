@@ -103,15 +103,15 @@ StudyPlan thesis_plan(const std::string& title, std::vector<PaperRow> paper, con
   return plan;
 }
 
-// The drive is linear up to about 8 V (thesis appendix A, digest 2.11); every thesis run is
+// The drive is linear up to about 8 V (thesis, appendix A.2.1.1, Fig. A-10); every thesis run is
 // limited there. Case B starts 6 cm off the desired point, where the unfiltered feedback asks
 // for hundreds of volts, and case D's halt asks for a 700 V spike.
 constexpr double kThesisDriveLimitV = 8.0;
 
 // Thesis eq. 2-68 (case C): x = 0.2 sin 7t, y = -0.02 cos 7t + 0.02 for 25 s; metrics over
-// 10-25 s (digest 2.12 [A]). Case D: as C, but the reference halts for 4 ms at t = 6 pi s
-// (digest 2.12 [A]). DARC (ch. 3) beside the chapter's SARC; the thesis has no DARC run on this
-// ellipse.
+// 10-25 s (netmc's choice: section 2.5.4.2 says "after several periods"). Case D: as C, but the
+// reference halts for 4 ms at t = 6 pi s (section 2.5.4.2; how it halts is netmc's assumption).
+// DARC (ch. 3) beside the chapter's SARC; the thesis has no DARC run on this ellipse.
 StudyPlan thesis_ellipse() {
   const netmc::v1::Trajectory t = thesis_ellipse_motion(0.2, 0.02, 7.0, 25.0);
   StudyPlan plan = thesis_plan(
@@ -187,9 +187,9 @@ StudyPlan thesis_circle() {
 }
 
 // Thesis ch. 3, Exp I (eq. 3-48): x = 0.2 sin 4t, y = -0.1 cos 4t + 0.1, 10 s, metrics over
-// 2-10 s (digest 2.12 [A]), Set1 (no load): the thesis's C1 GTCF-DARC, C2 GTCF-DIARC and C3
-// LTCF-DIARC (digest 2.7 [A]: built from the LTCF of 2.4 and DIARC), beside both frames of SARC,
-// which the thesis did not run here.
+// 2-10 s (window: netmc's choice), Set1 (no load): the thesis's C1 GTCF-DARC, C2 GTCF-DIARC and C3
+// LTCF-DIARC (its design is not in the thesis: netmc builds it from the LTCF of eq. 2-61..2-64 and
+// DIARC), beside both frames of SARC, which the thesis did not run here.
 StudyPlan thesis_darc() {
   const netmc::v1::Trajectory t = thesis_ellipse_motion(0.2, 0.1, 4.0, 10.0);
   StudyPlan plan = thesis_plan("thesis Table 3-1 (Exp I, Set1): 2:1 ellipse at 4 rad/s, linear motors, Ts = 0.2 ms",
@@ -205,7 +205,7 @@ StudyPlan thesis_darc() {
 
 // The thesis's load sets of chapters 3 and 4 as plant overrides of a linmotor job: Set1 as is,
 // Set2 a 5 kg payload (M1 0.12 -> 0.19, M2 0.55 -> 0.62 V/(m/s^2)), Set3 +0.8 V on the Y input
-// from 2.2 to 5.2 s (digest 2.7).
+// from 2.2 to 5.2 s (thesis, sections 3.5.3 and 4.4.2).
 void apply_thesis_set(netmc::v1::JobSpec& job, int set) {
   if (set == 2) {
     for (const char* axis : {"x", "y"}) {
@@ -226,7 +226,7 @@ void apply_thesis_set(netmc::v1::JobSpec& job, int set) {
   }
 }
 
-// Thesis Tables 3-1 and 3-2 (digest 2.7): Exp I (eq. 3-48) and Exp II (eq. 3-49), each under
+// Thesis Tables 3-1 and 3-2 (section 3.5.3): Exp I (eq. 3-48) and Exp II (eq. 3-49), each under
 // Set1 (no load), Set2 (5 kg payload: M1 0.12 -> 0.19, M2 0.55 -> 0.62 V/(m/s^2)) and Set3
 // (+0.8 V on the Y input from 2.2 to 5.2 s), for C1 GTCF-DARC, C2 GTCF-DIARC and C3 LTCF-DIARC;
 // 10 s, metrics over 2-10 s. The gains stay the thesis's; only the plant changes.
@@ -265,11 +265,11 @@ StudyPlan thesis_darc_sets() {
   return plan;
 }
 
-// Thesis Tables 4-1 and 4-2 (digest 2.8): cogging compensation. Exp I (eq. 4-24, x = 0.1 - 0.1 cos 3t,
+// Thesis Tables 4-1 and 4-2 (section 4.4.2): cogging compensation. Exp I (eq. 4-24, x = 0.1 - 0.1 cos 3t,
 // y = 0.2 sin 3t) and Exp II (eq. 4-25, x = 0.2 sin 7t, y = 0.1 - 0.1 cos 7t) under Sets 1-3 as in
 // ch. 3, C1 (GTCF-DARC with the cogging harmonics' adaptation at 0: no compensation) and C2 (500);
-// 10 s, metrics over 2-10 s, the thesis's gains. The stage's cogging is the digest's assumed
-// amplitudes (the thesis gives them only in figures).
+// 10 s, metrics over 2-10 s, the thesis's gains. The stage's cogging amplitudes are netmc's
+// assumption (the thesis gives them only in Figs. 4-3 and 4-4).
 StudyPlan thesis_cogging() {
   struct Experiment {
     const char* name;
@@ -314,7 +314,7 @@ StudyPlan thesis_cogging() {
   return plan;
 }
 
-// Thesis Table 5-1 (digest 2.9): dead-zone compensation on the single Hiwin axis (plant hiwin,
+// Thesis Table 5-1 (section 5.4): dead-zone compensation on the single Hiwin axis (plant hiwin,
 // eq. 5-49 with the dead zone 5-51), Ts = 0.2 ms, 0.5 um encoder, reference (5-50) from rest at
 // 0. Exp I: C1 (dead zone ignored), C2 (inverse of the nominal dead zone), C3 (DIARC with
 // dead-zone estimation), C4 (inverse of the true dead zone). Exp II: the symmetric dead zone (5-54)
@@ -484,13 +484,14 @@ StudyPlan thesis_spatial() {
   return plan;
 }
 
-// Paper 004, Table 4 (digest 4.5, 4.6): the H-bridge stage (stage004), the per-axis loops of
+// Paper 004, Table 4 (section 4): the H-bridge stage (stage004), the per-axis loops of
 // eq. 2 with 85 % acceleration feedforward, uncoupled and with the two cross-coupling laws
 // (eq. 13 with Table 3, eq. 20) at 20 kHz (Tustin), the plant integrated at 100 kHz. The metric
 // is the contour error's RMS over the whole run, settling included (the window opens at the
-// first period). Assumptions [A] of the digest: the circle r = 1/(5 pi) m, one revolution in
-// 2 s with 0.2 s quintic angle ramps, then 0.5 s holding the end point; the sharp angle
-// (0, 0) -> (0.1, 0) -> (0.1, 0.1) m at 0.1 m/s, stopping at the corner, then 0.5 s holding.
+// first period). netmc's assumptions [A] (section 4 prints "r = 1/5 pi m" and no speed): the circle
+// r = 1/(5 pi) m, one revolution in 2 s with 0.2 s quintic angle ramps, then 0.5 s holding the end
+// point; the sharp angle (0, 0) -> (0.1, 0) -> (0.1, 0.1) m at 0.1 m/s, stopping at the corner,
+// then 0.5 s holding.
 // The paper gives no acceleration or jerk limit for the sharp angle: 1 m/s^2 and 10 m/s^3 here
 // (the circle's peak is 0.78 m/s^2).
 constexpr double kSeed004SamplePeriodS = 5e-5;
@@ -524,7 +525,7 @@ StudyPlan seed004() {
                 {"sharp ffpid", 5.66e-6, std::numeric_limits<double>::quiet_NaN()},
                 {"sharp ffpid+lpccc", 6.06e-6, std::numeric_limits<double>::quiet_NaN()},
                 {"sharp ffpid+qftccc", 4.07e-6, std::numeric_limits<double>::quiet_NaN()}};
-  plan.paper_source = "paper 004, Table 4 (sharp-angle labels read as digest 4.6)";
+  plan.paper_source = "paper 004, Table 4 (its shifted sharp-angle labels read as uncoupled, PID-type, QFT-type)";
 
   netmc::v1::Trajectory circle;
   auto& c = *circle.mutable_circle();
@@ -556,8 +557,9 @@ StudyPlan seed004() {
 // Paper 002, Tables 1 and 2: the ball-screw table (eq. 1; 3 kg load: J + m rg^2 through the
 // plant's load_kg), T = 1 ms, Steffensen foot point, C4 = mfa-dtsmc and C3 = mfac with the paper's
 // gains but data_model "full": a full-form (L_y = 2, d = 1) data model, not the paper's compact
-// form (with eq. 9 both laws diverge within 20 ms; docs/reproductions.md). Digest 3.7 [A]: circle R = 50 mm about
-// (75, 75) mm, 5 s per revolution, 2 revolutions; heart scale 2.5 mm about (75, 75) mm, 10 s.
+// form (with eq. 9 both laws diverge within 20 ms; docs/reproductions.md). netmc's assumptions (section 6.3
+// gives no sizes or speeds): circle R = 50 mm about (75, 75) mm, 5 s per revolution, 2 revolutions; heart
+// scale 2.5 mm about (75, 75) mm, 10 s.
 netmc::v1::JobSpec seed002_job(const netmc::v1::Trajectory& trajectory, double duration_s, double load_kg,
                                const std::string& controller, const std::string& label) {
   netmc::v1::JobSpec job;

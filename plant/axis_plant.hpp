@@ -1,6 +1,7 @@
 #pragma once
 // Common interface of every simulated axis: the axis node and the in-process sim drive all plants
-// through it, one held input per call (paper 001, eq. 2 as reconstructed in the digest, 1.2).
+// through it, one held input per call (paper 001, eq. 2, cited but not printed in the source text;
+// read from its Fig. 4 and eq. 4).
 
 #include <memory>
 #include <string>

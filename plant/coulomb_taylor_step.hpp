@@ -1,6 +1,6 @@
 #pragma once
 // One step of the fifth-order Taylor method for a second-order axis with smoothed Coulomb
-// friction and a held forcing (paper 001, eq. 3 with the digest 1.7 [A] friction):
+// friction and a held forcing (paper 001, eq. 3 with netmc's assumed friction [A]):
 //   x'' = a1 x + a2 x' + w - c tanh(x' / s).
 // RK4 evaluates tanh at four stages, one after the other, and each waits for the last: the
 // plants' friction was 80 % of a simulated cycle. Here tanh is evaluated once per step and the

@@ -2,7 +2,8 @@
 // Exact discretisation of a two-state linear system z' = A z + B w with w held constant over a
 // step of length h (zero-order hold): z(t + h) = Phi(h) z(t) + Gamma(h) w, taken from the matrix
 // exponential of the augmented system, exp([[A, B], [0, 0]] h) = [[Phi, Gamma], [0, 1]].
-// Digest 1.2 [A]: the plants integrate paper 001 eq. 3 exactly on each sub-interval of a period.
+// netmc's choice [A]: the plants integrate paper 001 eq. 3 exactly on each sub-interval of a period
+// (the paper's discretisations, eq. 4-5, are for its analysis).
 //
 // Durations repeat (the period h, or tau and h - tau), so (Phi, Gamma) is cached per exact
 // duration value in a small least-recently-used table. Everything is fixed-size: step() never

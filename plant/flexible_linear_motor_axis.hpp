@@ -1,6 +1,6 @@
 #pragma once
 // Thesis (paper 000) linear-motor axis with the imperfections appendix A identifies beyond the
-// rigid model of LinearMotorAxis (digest 2.11, 2.12):
+// rigid model of LinearMotorAxis (appendix A.2; levels the thesis does not give are netmc's [A]):
 //   drive current loop, first order (A: bandwidth about 1.5 kHz):
 //     tau f' = u + d - f,                               tau = 1 / (2 pi current_loop_hz)
 //   two masses, the motor (coil, bearings, magnets' cogging) and the encoder's carriage:

@@ -59,7 +59,7 @@ LinearMotorAxis::LinearMotorAxis(LinearMotorParameters p)
 }
 
 double LinearMotorAxis::friction_force(double velocity) const {
-  // Paper 000, eq. A.3 (Stribeck, xi = 2), sign chosen to oppose motion (digest 2.11 [G]).
+  // Paper 000, eq. A.3 (Stribeck, xi = 2), sign chosen to oppose motion (as printed it would aid it).
   double level = p_.coulomb;
   if (p_.stribeck_extra != 0.0) {
     const double r = velocity / p_.stribeck_velocity;

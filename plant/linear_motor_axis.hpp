@@ -29,7 +29,7 @@ struct LinearMotorParameters {
   double stribeck_extra = 0.0;                // fs - fc (V), >= 0
   double stribeck_velocity = 0.01;            // y'_s (m/s)
   double friction_smoothing_velocity = 1e-4;  // m/s, tanh smoothing of sgn(y')
-  // Paper 000 ch. 4 (digest 2.8): measured magnet pitch P = 50 mm.
+  // Paper 000, section 4.4.1: measured magnet pitch P = 50 mm.
   double cogging_pitch_m = 0.05;
   std::vector<CoggingHarmonic> cogging;
   Disturbance disturbance;      // V

@@ -13,39 +13,39 @@
 #include "plant/linear_motor_axis.hpp"
 #include "plant/resonant_stage_axis.hpp"
 
-// Parameter choices (SI inside; the sources by their short names, docs/user-guide/default-study.md, "Plant for paper 001"):
+// Parameter choices (SI inside; the sources by the short names of docs/references.md):
 //
-// seed001 -- paper 001, eq. 3. The paper gives no plant numbers (digest 1.7 [G]); the digest's
-//   [A] default is a servo in speed mode, in mm: X a1=0, a2=-20, b=20, d=-50 tanh(x'/0.05) mm/s^2;
+// seed001 -- paper 001, eq. 3. The paper gives no plant numbers; netmc's assumed [A]
+//   default is a servo in speed mode, in mm: X a1=0, a2=-20, b=20, d=-50 tanh(x'/0.05) mm/s^2;
 //   Y a1=0, a2=-10, b=10, d=-70 tanh(y'/0.05) mm/s^2. In metres the friction becomes
 //   0.050 / 0.070 m/s^2 with a velocity scale of 5e-5 m/s; a1, a2, b are unit-free in length
 //   (b multiplies the command, whose unit the paper leaves open).
 //   Calibrated here (docs/user-guide/default-study.md, "Plant for paper 001"): velocity scale 1 mm/s and levels 60 / 85
-//   mm/s^2 give ADRC-only e_max = 0.083 mm (paper: 0.0811 mm). With the digest's 0.05 mm/s the
+//   mm/s^2 give ADRC-only e_max = 0.083 mm (paper: 0.0811 mm). With the first assumed 0.05 mm/s the
 //   friction is almost a step at each velocity reversal; the paper's PD-ILC then stalls at
 //   e_max/ADRC = 0.47 after 11 iterations and drifts upwards.
 //   Sub-step 1 ms: the stiffest term, the friction slope c/scale = 85 1/s (Y), gives
 //   |lambda h| = 0.085; with fifth-order Taylor steps (coulomb_taylor_step.hpp) the study's
 //   metrics agree with RK4 at 10 us sub-steps to 7e-9 relative (docs/benchmarks.md).
 //
-// ballscrew -- paper 002, eq. 1 and section 3.1, both axes identical: J = 0.8e-3 kg m^2,
+// ballscrew -- paper 002, eq. 1 (section 2) with section 6's parameters, both axes: J = 0.8e-3 kg m^2,
 //   B = 0.255 N m s/rad, Ka = 3.2 A/V, Kt = 0.9 N m/A, rg = 5 mm/rad = 0.005 m/rad, giving
-//   y'' = -318.75 y' + 18 (u + d) m/s^2 and 56.47 mm/s per volt (digest 3.1 [D]).
+//   y'' = -318.75 y' + 18 (u + d) m/s^2 and 56.47 mm/s per volt (derived from eq. 1).
 //
 // linmotor -- paper 000 (thesis), eq. 2-43 with appendix A nominals (A.8/A.9) in volts:
 //   X: M = 0.12 V/(m/s^2), B = 0.3 V/(m/s), A = 0.1 V;
-//   Y: M = 0.55 (ch. 4 Set1 value, digest 2.12 [G]: use 0.55 rather than the 0.5 nominal),
+//   Y: M = 0.55 (the Set1 value of sections 3.5.3 and 4.4.2, rather than the 0.5 nominal of A.9),
 //      B = 0.4, A = 0.15 V.
 //   Cogging, eq. 4-2/4-23 with the measured pitch P = 50 mm, X harmonics 1, 2, 3 and Y harmonics
-//   1, 6, 12; the amplitudes are only in figures, so the digest's [A] values (2.12) are used:
+//   1, 6, 12; the amplitudes are only in Figs. 4-3 and 4-4, so netmc assumes [A]:
 //   X (S, C) = (0.05, 0.03), (0.02, -0.01), (0.01, 0.01) V;
 //   Y (S, C) = (0.04, -0.02), (0.03, 0.02), (0.015, -0.01) V.
-//   Stribeck extra friction is left at 0: the digest suggests it "for realism" but gives no level.
+//   Stribeck extra friction is left at 0: eq. A.3 gives its form, the thesis no level.
 //   Friction smoothing 1e-4 m/s (the thesis' S_f = 2/pi atan(9000 v) has a similar width);
 //   sub-step 2e-5 s keeps RK4 stable on the friction slope A/(M v_s) ~ 8300 1/s (X).
 //
-// linmotor-flex -- linmotor with appendix A's imperfections (FlexibleLinearMotorAxis; digest 2.11,
-//   2.12): the rigid nominals, cogging and tanh smoothing above, plus
+// linmotor-flex -- linmotor with appendix A's imperfections (FlexibleLinearMotorAxis; appendix
+//   A.2): the rigid nominals, cogging and tanh smoothing above, plus
 //   from appendix A: a drive current loop of 1.5 kHz bandwidth; one flexible mode per axis between
 //     the motor and the encoder's carriage, its frequency inside A's ranges (X 100-200 Hz, Y 40-80
 //     Hz); Stribeck friction per A.3 (xi = 2).
@@ -59,7 +59,7 @@
 //     stage (GTCF / LTCF 0.95-1.0 against the thesis's 0.39).
 //   assumed [A]: the carriage carries 30 % of M (it does not change the carriage's response to
 //     the drive force, only where friction and cogging act: on the motor side); Stribeck
-//     velocity 0.01 m/s (the digest gives none).
+//     velocity 0.01 m/s (the thesis gives none).
 //   The computation delay is not part of the plant: it is the job's compute_delay_s (tau_cc), left
 //   at the presets' 0 (the dSPACE board computes within its 0.2 ms period, whose hold the runner
 //   already applies).
@@ -71,7 +71,7 @@
 // stage004 -- paper 004, eq. 1 with Tables 1 (X) and 2 (Y):
 //   X: m = 24 kg; (K, x, f) = (0.013, 0.040, 150 Hz), (0.0023, 0.018, 292 Hz), (0.0018, 0.027, 510
 //   Hz); Y: m = 30 kg; (0.018, 0.0432, 182 Hz), (0.0021, 0.0531, 302 Hz). Sub-step 1e-5 s (100 kHz,
-//   digest 4.6 [A]); with a constant force the modes are exact anyway.
+//   netmc's choice [A]); with a constant force the modes are exact anyway.
 //
 // hiwin -- paper 000 (thesis) ch. 5, the Hiwin single-axis linear-motor stage, eq. 5-49 with the
 //   Exp I dead zone 5-51: x'' = E w - B x' - A S_f(x'), w = D(v), identified B = 4.3 1/s,
@@ -205,7 +205,8 @@ std::vector<Setting<BallScrewParameters>> ballscrew_settings() {
       {"amplifier_gain_a_v", "Ka (A/V); 3.2", [](P& p, double v) { p.amplifier_gain = v; }},
       {"torque_constant_n_m_a", "Kt (N m/A); 0.9", [](P& p, double v) { p.torque_constant = v; }},
       {"lead_m_rad", "rg, screw lead (m/rad); 0.005", [](P& p, double v) { p.lead_m_per_rad = v; }},
-      // digest 3.7 [A]: a payload m on the table adds m rg^2 to J (3 kg: 0.875e-3 kg m^2)
+      // paper 002's load (section 6.3), as netmc assumes [A]: a payload m on the table adds m rg^2 to J
+      // (3 kg: 0.875e-3 kg m^2)
       {"load_kg", "payload on the table (kg), adds load * rg^2 to J; 0",
        [](P& p, double v) {
          require_non_negative_value("load_kg", v);
@@ -457,7 +458,7 @@ std::string plant_input_unit(std::string_view name) {
 AxisSet make_plant_set(std::string_view name, std::size_t axis_count, const std::vector<AxisOverrides>& overrides) {
   std::string title;
   if (name == "seed001") {
-    title = "seed001: paper 001 eq. 3 servo axes (digest 1.7 [A] defaults)";
+    title = "seed001: paper 001 eq. 3 servo axes (netmc's assumed parameters [A])";
   } else if (name == "ballscrew") {
     title = "ballscrew: paper 002 eq. 1 ball-screw drives (nominal J, B, Ka, Kt, rg)";
   } else if (name == "linmotor") {

@@ -63,7 +63,7 @@ AxisSet make_plant_set(std::string_view name, std::size_t axis_count,
                        const std::vector<AxisOverrides>& overrides = {});
 
 // Paper 001 axis parameters used by "seed001" (axis 0 = X, 1 = Y, 2 = copy of Y). The single
-// place to recalibrate the friction level (digest 1.7 [A]).
+// place to recalibrate the friction level (netmc's assumption [A]: the paper gives no plant numbers).
 SecondOrderAxisParameters seed001_axis_parameters(std::size_t axis);
 
 }  // namespace netmc::plant

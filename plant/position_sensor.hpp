@@ -1,7 +1,7 @@
 #pragma once
 // Position measurement of an axis: Gaussian noise, then encoder quantisation (paper 000 uses a
-// 0.5 um linear encoder, digest 2.12 [G]). Noise is drawn from netsim::RandomStream so a run is
-// reproducible from its seed on any platform.
+// 0.5 um linear encoder, section 2.5.1; appendix A.1.2 once prints 0.5 nm). Noise is drawn from
+// netsim::RandomStream so a run is reproducible from its seed on any platform.
 
 #include <cstdint>
 

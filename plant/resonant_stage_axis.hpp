@@ -26,7 +26,7 @@ struct ResonantStageParameters {
   double mass = 24;  // m (kg)
   std::vector<ResonanceMode> modes;
   Disturbance disturbance;      // N
-  double max_substep_s = 1e-5;  // RK4 sub-step bound (digest 4.6 [A]: 100 kHz)
+  double max_substep_s = 1e-5;  // RK4 sub-step bound (netmc's choice [A]: 100 kHz)
 };
 
 class ResonantStageAxis final : public PiecewiseAxisPlant {

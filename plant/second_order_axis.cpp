@@ -39,7 +39,7 @@ SecondOrderAxis::SecondOrderAxis(SecondOrderAxisParameters p)
 void SecondOrderAxis::advance_piece(double t0, double duration, double input, double step_level) {
   const Disturbance& d = p_.disturbance;
   if (p_.coulomb_acceleration == 0.0 && smooth_part_is_constant(d)) {
-    // Linear with a held input: exact (digest 1.2 [A]).
+    // Linear with a held input: exact (netmc's choice [A], exact_discretizer.hpp).
     exact_.step(state(), duration, p_.b * input + smooth_part(d, t0) + step_level);
     return;
   }
@@ -51,7 +51,7 @@ void SecondOrderAxis::advance_piece(double t0, double duration, double input, do
   const long long n = substep_count(kOwner, duration, p_.max_substep_s);
   double x = state()(0);
   double v = state()(1);
-  // Paper 001, eq. 3 with the digest 1.7 [A] friction -c tanh(x'/scale).
+  // Paper 001, eq. 3 with netmc's assumed friction [A] -c tanh(x'/scale).
   if (smooth_part_is_constant(d)) {
     const double w = forcing + smooth_part(d, t0);
     const CoulombAxisCoefficients k{a1, a2, w, c, inv_scale};

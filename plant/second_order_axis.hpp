@@ -1,7 +1,7 @@
 #pragma once
 // Paper 001, eq. 3: one servo axis in speed mode,
 //   x'' = a1 x + a2 x' + b u + d(t) - coulomb * tanh(x' / coulomb_velocity_scale),
-// with the Coulomb-like friction of digest 1.7 [A]. d(t) enters as an acceleration (m/s^2).
+// with a Coulomb-like friction netmc assumes [A]. d(t) enters as an acceleration (m/s^2).
 // Linear pieces (no friction, d constant over the piece) are integrated exactly by the matrix
 // exponential; otherwise sub-steps no longer than max_substep_s: fifth-order Taylor steps
 // (coulomb_taylor_step.hpp) where d is constant over the piece and the step is within their

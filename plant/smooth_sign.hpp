@@ -1,5 +1,5 @@
 #pragma once
-// tanh for the smoothed Coulomb friction of the plants (paper 001, digest 1.7 [A]: the sign of
+// tanh for the smoothed Coulomb friction of the plants (paper 001's axis, netmc's assumption [A]: the sign of
 // the velocity smoothed by tanh), evaluated once per RK4 stage. libm's tanh goes through expm1
 // and was 40 % of a simulated cycle; one exp does, with a short series near zero where
 // 1 - e^(-2|x|) would cancel. Relative error below 1e-14 over the whole line (tested against

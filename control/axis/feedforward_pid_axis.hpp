@@ -1,5 +1,5 @@
 #pragma once
-// Paper 004's single-axis loop (digest 4.2): the PID-type feedback G_c of eq. 2, spaced by α
+// Paper 004's single-axis loop (section 1): the PID-type feedback G_c of eq. 2, spaced by α
 // around the bandwidth f_bw, plus the acceleration feedforward G_f(s) = 0.85 m s^2, i.e.
 //   u = G_c(z) E + 0.85 m r'',   E = r - y,
 // with G_c discretised by Tustin at the loop rate. Force in N, lengths in m.
@@ -16,8 +16,8 @@ struct FeedforwardPidGains {
   double mass_kg = 24.0;               // m: sets K_p = m (2π f_bw)^2/α and the feedforward
   double bandwidth_hz = 50.0;          // f_bw
   double alpha = 3.0;                  // α: f_i = f_bw/α^2, f_d = f_bw/α, f_lp = α f_bw
-  double low_pass_damping = 0.7;       // z_lp of eq. 2 (not in the paper; digest 4.6 [A])
-  double feedforward_fraction = 0.85;  // of m r'' (paper 004, sec. 2: 85 % of the mass)
+  double low_pass_damping = 0.7;       // z_lp of eq. 2 (not in the paper: netmc's assumption [A])
+  double feedforward_fraction = 0.85;  // of m r'' (paper 004, section 1: 85 % of the mass)
 };
 
 FeedforwardPidGains paper004_x_axis_gains();  // Table 1

@@ -65,7 +65,7 @@ FootPoint steffensen_foot_point(const ReferenceTrajectory& curve, const Eigen::V
       break;
     }
     const double denominator = p2 - 2.0 * p1 + t;
-    // eq. 46; with a vanishing denominator the plain fixed-point step is taken (digest 3.7 [A]).
+    // eq. 46; with a vanishing denominator the plain fixed-point step is taken (netmc's choice [A]).
     t = clamp_time(curve, std::abs(denominator) < 1e-15 ? p2 : t - (p1 - t) * (p1 - t) / denominator);
     c = curve.sample(t);
     ++evaluations;

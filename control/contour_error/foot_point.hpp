@@ -1,7 +1,7 @@
 #pragma once
 // Foot point of a point P on a desired motion C(t): the time t* whose position is nearest to P,
 // solving (C(t) - P) . C'(t) = 0. The contour error is |P - C(t*)|. Three ways (paper 002, sec. 4):
-//   Newton:     t+ = phi(t) = t - (C(t) - P) . C'(t) / |C'(t)|^2   (digest 3.4, linear convergence)
+//   Newton:     t+ = phi(t) = t - (C(t) - P) . C'(t) / |C'(t)|^2   (paper 002, eq. 41, linear convergence)
 //   Steffensen: t+ = t - (phi(t) - t)^2 / (phi(phi(t)) - 2 phi(t) + t)   (paper 002, eq. 46)
 //   exact:      global search over the whole curve, then refinement (ground truth).
 
@@ -25,7 +25,7 @@ struct FootPoint {
 };
 
 struct FootPointOptions {
-  double tolerance_s = 1e-9;  // stop when |t+ - t| < tolerance (digest 3.7 [A])
+  double tolerance_s = 1e-9;  // stop when |t+ - t| < tolerance (paper 002 gives none: netmc's choice [A])
   int max_iterations = 20;
 };
 

@@ -26,7 +26,7 @@ class ContouringController final : public ContourController {
 
   // Start of an iteration with the axes at rest at `initial_position`, `samples` cycles long.
   void begin_iteration(const Eigen::Vector2d& initial_position, std::size_t samples) override;
-  // Cycle k: reference point and measured axis positions in, commands out (paper 001, sec. 1.5).
+  // Cycle k: reference point and measured axis positions in, commands out (paper 001, eq. 8-15).
   ContouringCycle step(std::size_t cycle, const ReferencePoint& reference,
                        const Eigen::Vector2d& measured) override;
   void end_iteration() override;

@@ -51,7 +51,7 @@ ContouringCycle FeedforwardPidContouring::step(std::size_t cycle, const Referenc
   }
   compensator_->observe_coupling(cycle, out.estimate.cx, out.estimate.cy);
   out.coupling_command = compensator_->command(cycle, out.estimate.contour_error);
-  // paper 004, eq. 6 ([D] digest 4.3), the sign convention of paper 001's eq. 15
+  // the structure derived from paper 004, eq. 6, with the sign convention of paper 001's eq. 15
   out.command.x() = out.axis_command.x() - out.estimate.cx * out.coupling_command;
   out.command.y() = out.axis_command.y() + out.estimate.cy * out.coupling_command;
   return out;

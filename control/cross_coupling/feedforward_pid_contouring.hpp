@@ -1,7 +1,7 @@
 #pragma once
-// Paper 004's cross-coupled structure (digest 4.3, [D] from eq. 6): per axis the feedback G_c of
-// eq. 2 with the acceleration feedforward (FeedforwardPidAxis), and a cross-coupling law C on
-// the estimated contour error, distributed with the convention of section 0:
+// Paper 004's cross-coupled structure (section 2.2, derived from eq. 6): per axis the feedback G_c
+// of eq. 2 with the acceleration feedforward (FeedforwardPidAxis), and a cross-coupling law C on
+// the estimated contour error, distributed with the sign convention of paper 001's eq. 15:
 //   ε_c = E_y cos φ - E_x sin φ (eq. 3 with the tangent estimator), u_c = C ε_c,
 //   U_x = u_x - C_x u_c,  U_y = u_y + C_y u_c,  C_x = sin φ, C_y = cos φ (eq. 4), E = r - y.
 // Unlike ContouringController its axes see the reference acceleration (the feedforward).

@@ -1,6 +1,7 @@
 #pragma once
-// Model-free adaptive control (paper 002's comparison controller C3, digest 3.7 [A]: the standard
-// CFDL-MFAC law) with the contour error folded into the error it drives to zero.
+// Model-free adaptive control (paper 002's comparison controller C3, whose law the paper does not
+// print: netmc assumes the standard CFDL-MFAC law [A]) with the contour error folded into the error
+// it drives to zero.
 // data_model compact (paper 002, eq. 9; the default):
 //   Phi^(k) = Phi^(k-1) + eta du(k-1) (dy(k) - Phi^(k-1) du(k-1)) / (mu + du(k-1)^2)
 //   reset to Phi^(1) when |Phi^| <= epsilon, |du(k-1)| <= epsilon or sign(Phi^) != sign(Phi^(1))
@@ -16,7 +17,7 @@
 
 namespace netmc::control {
 
-// Paper 002, sec. 5, C3 (digest 3.6); lengths in um.
+// Paper 002, section 6.3, C3; lengths in um.
 struct CompactFormMfacGains {
   double mu = 0.5, lambda = 0.1, rho = 0.6, eta = 1.0, epsilon = 1e-5;
   double phi_initial = 18.0;     // um/V

@@ -7,7 +7,7 @@
 //              tracking error at the sample du(k) first moves, the gain of du(k) on it, and the
 //              law's rule (C3's least-squares step or C4's reaching-law target);
 //   commit():  take du(k) and return u(k) = u(k-1) + du(k).
-// command() is the per-axis law with eps(k+1) ~ eps(k) (the digest's reading of eq. 24), i.e. the
+// command() is the per-axis law with eps(k+1) ~ eps(k) (netmc's first reading of eq. 24 [A]), i.e. the
 // composition's coupling with no normal (data_driven_contouring.hpp).
 
 #include <memory>

@@ -2,10 +2,10 @@
 // Paper 002's contouring structure: a data-driven law per axis (MFA-DTSMC, CFDL-MFAC) that takes
 // its own component of the estimated contour-error vector into its error (eq. 16), with the
 // contour error from any in-loop estimator (tangent, curvature, Newton, Steffensen). The laws run
-// in `length_unit_m` (paper 002's gains are for um, digest 3.7 [A]); commands are in volts.
+// in `length_unit_m` (netmc assumes paper 002's gains are for um [A]); commands are in volts.
 //
 // Contour coupling (fills a gap of paper 002): eq. 24 needs eps(k+1), the contour error one sample
-// ahead, which depends on the increments being chosen; the digest's eps(k+1) ~ eps(k) makes both
+// ahead, which depends on the increments being chosen; the per-axis eps(k+1) ~ eps(k) makes both
 // laws unstable even on a plant that is exactly their data model. With n the unit normal of the
 // contour-error estimate (eps = n n^T (P - foot point), the foot point and the reference moving
 // along the tangent to first order), eps(k+1) = eps(k) + n n^T (e_tr(k+1) - e_tr(k)) with
@@ -13,8 +13,8 @@
 //   E(k+1) = (I + D n n^T) e_tr(k+1) + D (eps(k) - n n^T e_tr(k)),   D = diag(delta_x, delta_y),
 // linear in both axes' du(k) through e_tr(k+1) = free error + diag(gain) du(k). ContourCoupling::
 // through_outputs (the default) solves that 2x2 system: C4 puts E at its reaching-law target,
-// C3 takes MFAC's penalised least-squares step on E. ContourCoupling::frozen is the digest's
-// per-axis law (n = 0).
+// C3 takes MFAC's penalised least-squares step on E. ContourCoupling::frozen is the per-axis law
+// with eps(k+1) ~ eps(k) (n = 0).
 
 #include <memory>
 

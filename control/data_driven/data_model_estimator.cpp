@@ -8,7 +8,7 @@
 namespace netmc::control {
 namespace {
 
-// Theorem 2 (digest 3.5) asks for steps in (0.5, 1); the compact-form MFAC of C3 uses eta = 1,
+// Theorem 2 (paper 002, section 5) asks for steps in (0.5, 1); the compact-form MFAC of C3 uses eta = 1,
 // so (0, 1] is accepted and the stricter range is left to the caller.
 double require_step(double value, std::string_view field) {
   if (!std::isfinite(value) || value <= 0.0 || value > 1.0) {
@@ -45,7 +45,7 @@ void DataModelEstimator::update(double output_increment, double previous_input_i
   const double residual = output_increment - (psi_ * increment_ + phi_ * du);  // dy(k) - kappa(k-1)
   // All three from the estimates of k-1 (eq. 14a-c).
   double phi = phi_ + gains_.eta * du * residual / (gains_.mu + du * du);
-  // Resets (sec. 3.2).
+  // Resets (paper 002, section 3.3).
   if (std::abs(phi) <= gains_.epsilon || std::abs(du) <= gains_.epsilon) phi = gains_.phi_initial;
   phi_ = phi;
   update_disturbance(residual);

@@ -5,9 +5,9 @@
 //   Phi^   += eta du(k-1) (dy(k) - kappa) / (mu + du(k-1)^2)          (eq. 12 = 14a)
 //   Psi^   += tau dd^(k-1) (dy(k) - kappa) / (gamma + dd^(k-1)^2)     (eq. 13 = 14b)
 //   dd^(k)  = dd^(k-1) + sigma Psi^(k-1) (dy(k) - kappa) / (rho + Psi^(k-1)^2)   (eq. 11 = 14c,
-//             with sigma where 14c prints rho: digest 3.2 [G])
-// and the resets of sec. 3.2: Phi^ back to its initial value when |Phi^| or |du| falls to
-// epsilon, Psi^ likewise with |Psi^| or |dd^| (digest [A]: dd^ for the unmeasurable dd), and dd^
+//             with sigma where 14c prints rho, read as a misprint)
+// and the resets of section 3.3: Phi^ back to its initial value when |Phi^| or |du| falls to
+// epsilon, Psi^ likewise with |Psi^| or |dd^| (netmc's assumption [A]: dd^ for the unmeasurable dd), and dd^
 // back to 0 when |dd^| reaches 2 d0. Units are the controller's (paper 002: um and V).
 
 #include <string>
@@ -30,7 +30,7 @@ struct DataModelEstimatorGains {
   double tau = 0.8, gamma = 0.4;    // Psi^ step and penalty
   double sigma = 0.8, rho = 0.3;    // dd^ step and penalty
   double epsilon = 1e-5;            // reset threshold
-  double phi_initial = 18.0;        // Phi^(1) (digest 3.7 [A]: T^2 Ka Kt rg / J = 18 um/V)
+  double phi_initial = 18.0;        // Phi^(1) (netmc's assumption [A]: T^2 Ka Kt rg / J = 18 um/V)
   double psi_initial = 18.0;        // Psi^(1)
   double disturbance_bound = 1.0;   // d0; dd^ resets at 2 d0
 };

@@ -1,7 +1,8 @@
 #pragma once
 // Paper 002's per-axis law C4, model-free adaptive discrete terminal sliding mode control with
-// contour coupling (eq. 16-25), implemented as the digest's law (3.3 [A]): the estimation errors
-// H and lambda(k) are unknown and taken as 0, and, per axis (command()), eps(k+1) ~ eps(k):
+// contour coupling (eq. 16-25; the combined law, eq. 26-28, is missing from the source text),
+// implemented with netmc's assumptions [A]: the estimation errors H and lambda(k) are unknown and
+// taken as 0, and, per axis (command()), eps(k+1) ~ eps(k):
 //   e(k)   = y(k) - y_d(k) + delta eps(k)                                            (eq. 16)
 //   du_eq  = [ (E1 s - E2 sgn s)/lambda1 + (1 - beta) e(k) - (lambda2/lambda1) e(k)^alpha
 //              - Psi^ dd^(k) + y_d(k+1) - delta eps(k) - y(k) ] / Phi^                  (eq. 24)
@@ -22,7 +23,7 @@
 
 namespace netmc::control {
 
-// Paper 002, sec. 5, C4 (digest 3.6); lengths in um (digest 3.7 [A]).
+// Paper 002, section 6.3, C4; lengths in um (netmc's assumption [A]).
 struct MfaDtsmcGains {
   DataModelEstimatorGains estimator;
   TerminalSlidingModeGains sliding;

@@ -49,7 +49,7 @@ double TerminalSlidingMode::e2(double s) const { return gains_.lambda * std::cos
 
 double TerminalSlidingMode::next_sliding_variable(double s) const {
   const double contraction = e1(s);
-  // The reaching conditions (digest 3.5, eq. 65-70) ask |s(k+1)| < |s(k)| without a change of
+  // The reaching conditions (paper 002, section 5, eq. 65-70) ask |s(k+1)| < |s(k)| without a change of
   // sign beyond the band; cosh(delta2 s) breaks that once |s| is large, so the switching step is
   // bounded by E1 |s|.
   const double step = std::min(e2(s), contraction * std::abs(s) + gains_.lambda);

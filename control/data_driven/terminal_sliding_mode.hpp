@@ -1,7 +1,7 @@
 #pragma once
 // Paper 002's discrete terminal sliding mode: the sliding variable (eq. 17)
 //   s(k) = lambda1 e(k) + lambda2 e(k-1)^alpha - lambda1 (1 - beta) e(k-1)
-// with e^alpha = sign(e) |e|^alpha (digest 3.3 [A]), and the reaching law (eq. 18-20)
+// with e^alpha = sign(e) |e|^alpha (netmc's assumption [A]), and the reaching law (eq. 18-20)
 //   s(k+1) = E1(s) s(k) - E2(s) sgn s(k),  E1 = (1 - qT) / cosh(delta1 s),  E2 = lambda cosh(delta2 s).
 // The hyperbolic terms grow like e^|delta s|; their argument is bounded (kMaxHyperbolicArgument)
 // so that a large transient error gives a large but finite step instead of inf (an implementation

@@ -34,7 +34,7 @@ namespace netmc::control {
 
 using DeadZoneTheta = Eigen::Matrix<double, 6, 1>;  // [B, A, m_r, m_r b_r, m_l, m_l b_l]
 
-// Thesis section 5.4, Exp I (digest 2.9).
+// Thesis section 5.4.1, Exp I.
 struct DeadZoneDiarcGains {
   DiarcLoopGains loop;
   DeadZoneTheta initial_estimate = (DeadZoneTheta() << 4.3, 0.9, 3.0, 4.2, 4.0, -3.2).finished();  // theta_N

@@ -16,7 +16,7 @@
 
 namespace netmc::control {
 
-// Thesis section 5.4 (digest 2.9): one gain set for C1..C4.
+// Thesis section 5.4.1: one gain set for C1..C4.
 struct DiarcLoopGains {
   double lambda = 200.0;                  // lambda (1/s), s = x~' + lambda x~
   double feedback = 200.0;                // k_s = k_s1 + k_s2 (1/s), w_ds = -k_s s

@@ -6,7 +6,7 @@
 //   theta_hat' = Proj(-Gamma Phi_f^T sigma / nu),
 //   Gamma' = alpha Gamma - Gamma Phi_f^T Phi_f Gamma / nu  while lambda_max(Gamma_LxL) <= rho_M, else 0,
 // with Gamma_LxL its leading L x L block (chapter 3 limits only the physical block). Projection
-// for a non-diagonal Gamma: clamp into the box after the step (digest 2.12 [A]).
+// for a non-diagonal Gamma: clamp into the box after the step (netmc's assumption [A]).
 // Fixed-size Eigen throughout: update() does not allocate. The caller validates the settings.
 
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 #pragma once
-// Paper 004's QFT design of a cross-coupled contour controller C(s) (digest 4.1-4.4): the
+// Paper 004's QFT design of a cross-coupled contour controller C(s) (sections 1-3): the
 // contour loop sees the two closed axis loops as one uncertain plant K(s) (eq. 14) whose
 // uncertainty is C_x^2 = sin^2 φ, φ the path's tangent angle. For a given C(s) this checks, per
 // design frequency and over the whole template, the sensitivity bound (eq. 16) and the tracking
@@ -35,7 +35,7 @@ TransferFunction stage_axis_plant(const StageAxisModel& axis);
 
 // paper 004, eq. 2: G_c(s) = K_p ((s + 2π f_i)/s) (s/(2π f_d) + 1) ω_lp^2/(s^2 + 2 z_lp ω_lp s + ω_lp^2)
 // with f_i = f_bw/α^2, f_d = f_bw/α, ω_lp = 2π α f_bw, K_p = m (2π f_bw)^2/α. The paper gives no
-// z_lp for this filter; digest 4.6 assumes 0.7.
+// z_lp for this filter; netmc assumes 0.7 [A].
 TransferFunction stage_axis_feedback(const StageAxisModel& axis, double low_pass_damping = 0.7);
 
 // Both axes, each with its plant and feedback: what the contour loop acts on.

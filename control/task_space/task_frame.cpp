@@ -51,7 +51,7 @@ CircleTaskFrame::CircleTaskFrame(const Eigen::Vector2d& center, double radius, b
 double CircleTaskFrame::perimeter_m() const { return kTwoPi * radius_; }
 
 TaskCoordinates CircleTaskFrame::at(const Eigen::Vector2d& q) const {
-  // thesis, eq. 2-34..2-36 (digest 2.1 [D] for J)
+  // thesis, eq. 2-34..2-36 (J derived from them for a centre (x0, y0))
   const Eigen::Vector2d d = q - center_;
   const double rho = d.norm();
   if (rho <= 0.0) throw std::invalid_argument("circle task frame: undefined at the centre");
@@ -87,7 +87,8 @@ double EllipseTaskFrame::rc(const Eigen::Vector2d& p) const {
 
 double EllipseTaskFrame::parameter(const Eigen::Vector2d& p) const {
   // thesis, eq. 2-21: project along grad f onto the contour (f = u - 1, u^2 = x^2/a^2 + y^2/b^2),
-  // then the arc length of the projected point's parameter (digest 2.12 [A]: branch by atan2).
+  // then the arc length of the projected point's parameter (netmc's assumption [A]: branch by atan2,
+  // since eq. 2-42's arccos covers half the ellipse).
   const double u = std::sqrt(p.x() * p.x() / (a_ * a_) + p.y() * p.y() / (b_ * b_));
   const Eigen::Vector2d grad(p.x() / (a_ * a_ * u), p.y() / (b_ * b_ * u));
   const Eigen::Vector2d projected = p - (u - 1.0) * grad / grad.squaredNorm();

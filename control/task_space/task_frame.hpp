@@ -34,7 +34,7 @@ class TaskFrame {
 
 // rc = |q - c| - R, rm = R atan2 (counter-clockwise arc length), J = [e_r; e_theta * R/rho].
 // Clockwise: rm = -R atan2 and the second row of J negated, so that rm grows along the motion
-// (digest 2.12 [A], thesis case B).
+// (netmc's assumption [A], for the thesis's case B of section 2.5.4.1).
 class CircleTaskFrame final : public TaskFrame {
  public:
   CircleTaskFrame(const Eigen::Vector2d& center, double radius, bool clockwise = false);

@@ -4,8 +4,8 @@
 // magnet pitch P (eq. 4-2, harmonics of eq. 4-23: X 1, 2, 3 and Y 1, 6, 12),
 //   M q'' + B q' + A S_f + F_r(q) = u + d_N,  F_rx = sum_i S_xi sin(2 pi i x/P) + C_xi cos(2 pi i x/P),
 // so theta_r = [M1, M2, B1, B2, A1, A2, S_x1, C_x1, ..., S_y12, C_y12, d_N1, d_N2] (8 + 4m = 20
-// entries) and the Cartesian regressor of ch. 3 gains +sin, +cos columns per harmonic (digest 2.8
-// [D]). u = Phi_r theta_hat - J^T K s, tau = -Phi_r^T J^-1 s, theta_hat' = Proj(Gamma tau). The
+// entries) and the Cartesian regressor of ch. 3 gains +sin, +cos columns per harmonic (derived
+// from eq. 4-2). u = Phi_r theta_hat - J^T K s, tau = -Phi_r^T J^-1 s, theta_hat' = Proj(Gamma tau). The
 // friction regressor uses the desired velocity, S_f(q_d') (ch. 4's C1 and C2). With the cogging
 // rows of Gamma at 0 this is ch. 4's C1 (no compensation), at 500 its C2.
 
@@ -22,7 +22,7 @@ inline constexpr int kCoggingHarmonicsPerAxis = 3;
 inline constexpr int kCoggingParameters = 8 + 4 * kCoggingHarmonicsPerAxis;  // 20
 using CoggingParameterVector = Eigen::Matrix<double, kCoggingParameters, 1>;
 
-// Thesis ch. 4, controller C2 (digest 2.8): bounds, Gamma, theta_hat(0), harmonics.
+// Thesis section 4.4, controller C2: bounds, Gamma, theta_hat(0), harmonics.
 struct CoggingDarcGains {
   CoggingParameterVector initial_estimate = (CoggingParameterVector() << 0.12, 0.5, 0.3, 0.4, 0.1, 0.15,
                                              0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0).finished();

@@ -1,6 +1,6 @@
 #pragma once
 // Direct adaptive robust contouring control in task coordinates (thesis, paper 000, ch. 3,
-// eq. 3-11..3-23), in the Cartesian form of digest 2.7 [D]: with the regressor
+// eq. 3-11..3-23), in a Cartesian form derived from them: with the regressor
 //   Phi_c = [ q_eq1''  0  x'  0  S_f(x')  0  -1   0 ]
 //           [ 0  q_eq2''  0  y'  0  S_f(y')  0  -1 ]
 // and theta = [M1, M2, B1, B2, A1, A2, dn1, dn2] (model 3-2: M q'' + B q' + A S_f(q') = u + d_n),
@@ -23,7 +23,7 @@ using ParameterVector = Eigen::Matrix<double, 8, 1>;
 // Names and units of theta = [M1, M2, B1, B2, A1, A2, dn1, dn2] (model 3-2, volts), as estimates.
 std::vector<EstimateName> parameter_estimate_names();
 
-// Thesis ch. 3 experiment, controller C1 (digest 2.7): bounds (3-47), Gamma, theta_hat(0).
+// Thesis section 3.5, controller C1: bounds (3-47), Gamma, theta_hat(0).
 struct DarcGains {
   ParameterVector initial_estimate = (ParameterVector() << 0.1, 0.55, 0.3, 0.3, 0.1, 0.15, 0.0, 0.0).finished();
   ParameterVector lower = (ParameterVector() << 0.06, 0.4, 0.2, 0.3, 0.05, 0.08, -0.5, -0.5).finished();
@@ -34,7 +34,7 @@ struct DarcGains {
   Eigen::Vector2d feedback{100.0, 60.0};  // K (total u_s gain)
 };
 
-// The regressor Phi_c of the Cartesian form (digest 2.7 [D]).
+// The regressor Phi_c of the Cartesian form (derived from eq. 3-17/3-18).
 Eigen::Matrix<double, 2, 8> darc_regressor(const Eigen::Vector2d& equivalent_acceleration,
                                            const Eigen::Vector2d& velocity, double friction_slope);
 

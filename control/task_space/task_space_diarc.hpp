@@ -1,16 +1,16 @@
 #pragma once
 // Desired-compensation indirect adaptive robust contouring control in task coordinates (thesis,
-// paper 000, ch. 3, eq. 3-29..3-42), Cartesian form (digest 2.7 [D]):
+// paper 000, ch. 3, eq. 3-29..3-42), in a Cartesian form derived from them:
 //   u = Phi_c theta_hat - d_hat_c - J^T K s,
 // where the fast estimate d_hat_c of the low-frequency lumped disturbance follows (3-35),
 // d_hat_c' = Proj(gamma_d J^-1 s) within |d_hat_c,i| <= d_c,max (J^-1 = J^T on the contour),
 // and theta_hat comes from a least-squares estimator on the filtered model (3-38..3-42):
 //   u_f = Upsilon_f^T theta, Upsilon_f^T = [x''_f 0 x'_f 0 S_f(x')_f 0 -1_f 0; 0 y''_f ...]
-//   (d_n column -1: digest 2.12 [A]), prediction error sigma = Upsilon_f^T theta_hat - u_f,
+//   (d_n column -1 as eq. 3-2 implies; 3-39 prints +1), prediction error sigma = Upsilon_f^T theta_hat - u_f,
 //   tau = -Upsilon_f sigma / (1 + nu tr(Upsilon_f^T Gamma Upsilon_f)),
 //   Gamma' = kappa Gamma - Gamma Upsilon_f Upsilon_f^T Gamma / (1 + nu tr(...)) while
-//   lambda_max of Gamma's 6x6 physical block <= rho_M (digest 2.12 [A]: Gamma(0) has 5000 > rho_M
-//   on the offsets), else 0; theta_hat' = Gamma tau, clamped into the box (digest 2.12 [A]).
+//   lambda_max of Gamma's 6x6 physical block <= rho_M (netmc's assumption [A]: the thesis's Gamma(0)
+//   has 5000 > rho_M on the offsets), else 0; theta_hat' = Gamma tau, clamped into the box ([A]).
 // H_f is second order (damping 0.7, cut-off per axis); x''_f is the derivative of the filtered
 // velocity, so no second difference of positions is taken. Filters run by the trapezoidal rule;
 // the command enters as the value held over the last period (zero-order hold).
@@ -28,7 +28,7 @@ namespace netmc::control {
 
 using CovarianceMatrix = Eigen::Matrix<double, 8, 8>;
 
-// Thesis ch. 3 experiment, controller C2 (digest 2.7).
+// Thesis section 3.5, controller C2.
 struct DiarcGains {
   ParameterVector initial_estimate = DarcGains{}.initial_estimate;
   ParameterVector lower = DarcGains{}.lower;

@@ -57,7 +57,7 @@ SlidingState TaskSpaceSlidingVariable::update(std::size_t cycle, const Reference
     if (filter_) {
       // eq. 2-67: r_i = r_d + z, started at r_i(0) = r(q(0)), r_i'(0) = 0. The tangential error
       // is wrapped once, after z is added, so that it stays continuous however far r_mi moves
-      // from r_md on a closed contour (digest 2.12 [A]).
+      // from r_md on a closed contour (netmc's assumption [A]).
       if (samples_seen_ == 0) {
         first_cycle_ = cycle;
         filter_->start({actual.rc, wrap(actual.rm - desired.rm)}, {0.0, -speed});
@@ -78,7 +78,8 @@ SlidingState TaskSpaceSlidingVariable::update(std::size_t cycle, const Reference
     if (local_rate_ == LocalFrameRate::rotating && speed > 0.0) {
       // T' = alpha' dT/dalpha with alpha' = (v x a) / |v|^2 of the desired motion; moving T' e
       // into the desired rate makes s = e' + Lambda e and q_eq' = q_d' - T (T' + Lambda T) e
-      // (digest 2.4 [A]). At the ellipse's vertices alpha' reaches 70 rad/s.
+      // (netmc's reconstruction [A]: the thesis does not give its LTCF controllers' design). At the
+      // ellipse's vertices alpha' reaches 70 rad/s.
       const Eigen::Vector2d& v = reference.velocity;
       const Eigen::Vector2d& a = reference.acceleration;
       const double alpha_rate = (v.x() * a.y() - v.y() * a.x()) / (speed * speed);

@@ -3,7 +3,7 @@
 // without saturating, the controller tracks r_i = [r_ci, r_mi] instead of r_d = [0, r_md]:
 //   r_ci'' + 2 wc r_ci' + wc^2 r_ci = 0,
 //   r_mi'' + 2 wm r_mi' + wm^2 r_mi = r_md'' + 2 wm r_md' + wm^2 r_md,
-// started at r_i(0) = r(q(0)), r_i'(0) = 0 (stage at rest, digest 2.5 [A]), so the initial
+// started at r_i(0) = r(q(0)), r_i'(0) = 0 (stage at rest, netmc's assumption [A]), so the initial
 // error with respect to r_i is zero. Since r_cd = 0 and r_md enters through the same operator as
 // r_mi, the offset z = r_i - r_d obeys the homogeneous equation z'' + 2 w z' + w^2 z = 0 in each
 // coordinate, solved exactly: z(t) = (z0 + (z0' + w z0) t) e^(-w t). Working on the offset needs

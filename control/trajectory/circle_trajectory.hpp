@@ -1,7 +1,7 @@
 #pragma once
 // Uniform motion around a circle (paper 001's experiment: r = 10 mm, centre (50, 50) mm, 8 s),
-// or, with a ramp, from rest to rest: the angle ramps in and out as a quintic in time (digest
-// 4.6 [A], paper 004's circle) and holds the end point after the duration.
+// or, with a ramp, from rest to rest: the angle ramps in and out as a quintic in time (netmc's
+// assumption [A] for paper 004's circle) and holds the end point after the duration.
 
 #include "control/trajectory/reference_trajectory.hpp"
 

@@ -2,7 +2,7 @@
 // A desired motion that stops dead for a while and then goes on where it stopped: the reference
 // time freezes for `halt_duration_s` at `halt_at_s` and continues shifted by it afterwards
 // (thesis, paper 000, case D of Table 2-2: the machine is commanded to halt for 4 ms at
-// t = 6 pi s; digest 2.12 [A]). The contour is the wrapped motion's: only the timing changes,
+// t = 6 pi s; how it halts is netmc's assumption [A]). The contour is the wrapped motion's: only the timing changes,
 // so the desired velocity jumps to zero and back, and the tangential error grows to
 // v * halt_duration_s within the halt.
 

@@ -1,7 +1,8 @@
 #pragma once
 // Paper 002's heart-shaped contour with two sharp corners (cusps, where the desired velocity
 // vanishes): x = cx + 16 s sin^3(phi), y = cy + s (13 cos phi - 5 cos 2phi - 2 cos 3phi - cos 4phi),
-// phi = 2 pi t / period (digest 3.7 [A]: s = 2.5 mm, centre (75, 75) mm, period 10 s).
+// phi = 2 pi t / period (paper 002 gives neither equation nor size: netmc's assumption [A],
+// s = 2.5 mm, centre (75, 75) mm, period 10 s).
 
 #include "control/trajectory/reference_trajectory.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 // One DDS domain participant with the netmc topics, and typed writers/readers with the QoS of
-// each kind of data (architecture.md, "DDS data plane"):
+// each kind of data (topics in server/dds/topics.hpp, their types in idl/dds_types.idl):
 //   stream    best-effort, keep-last: realtime setpoints and feedback never wait for a lost
 //             sample; the axis holds its last command, the server computes with what it has.
 //   exchange  reliable with millisecond heartbeats: lockstep, where every sample is needed and a

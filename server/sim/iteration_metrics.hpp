@@ -1,5 +1,6 @@
 #pragma once
-// Per-iteration results of a contouring job (architecture.md, "Metrics"), SI units.
+// Per-iteration results of a contouring job, SI units: contour errors from the true plant state and the exact
+// distance to the reference, tracking and command per axis, loop delays and message counts.
 
 #include <cstddef>
 #include <array>

@@ -1,4 +1,4 @@
-// `netmc qft` in-process: the printed eq. 20 table against the digest's numbers (4.4), the
+// `netmc qft` in-process: the printed eq. 20 table against an independent check's numbers, the
 // verdicts of eq. 19 and the PID-CCC, a bad --ccc value, and the Bode and Nichols figures.
 #include <gtest/gtest.h>
 
@@ -34,7 +34,7 @@ std::map<double, Row> table_rows(const std::string& out, const std::string& head
     std::istringstream words(line);
     std::vector<std::string> w;
     for (std::string word; words >> word;) w.push_back(word);
-    // f, max|S|, bound, digest, max|T|/|T_u|, digest, verdict...
+    // f, max|S|, bound, ref, max|T|/|T_u|, ref, verdict...
     if (w.size() < 7) continue;
     try {
       std::size_t used = 0;
@@ -50,12 +50,12 @@ std::map<double, Row> table_rows(const std::string& out, const std::string& head
   return rows;
 }
 
-TEST(NetmcQft, Eq20TableReproducesTheDigest) {
+TEST(NetmcQft, Eq20TableReproducesTheReferenceCheck) {
   const NetmcOutcome result = run_netmc_captured({"qft"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const auto rows = table_rows(result.out, "paper 004, eq. 20");
   ASSERT_EQ(rows.size(), 7u) << result.out;
-  // Digest 4.4: max|S| 0.10 (0.1-1 Hz, printed to two decimals), 0.215 (10 Hz), 0.71 (35 Hz).
+  // The independent check: max|S| 0.10 (0.1-1 Hz, to two decimals), 0.215 (10 Hz), 0.71 (35 Hz).
   EXPECT_NEAR(rows.at(0.1).max_sensitivity, 0.10, 0.002) << result.out;
   EXPECT_NEAR(rows.at(0.5).max_sensitivity, 0.10, 0.002) << result.out;
   EXPECT_NEAR(rows.at(1.0).max_sensitivity, 0.10, 0.005) << result.out;
@@ -66,7 +66,7 @@ TEST(NetmcQft, Eq20TableReproducesTheDigest) {
     EXPECT_EQ(row.verdict, "pass") << f;
   }
   EXPECT_NE(result.out.find("meets eq. 16"), std::string::npos) << result.out;
-  EXPECT_NE(result.out.find("<=0.917"), std::string::npos) << "the digest's value beside the measured one";
+  EXPECT_NE(result.out.find("<=0.917"), std::string::npos) << "the reference value beside the measured one";
 }
 
 TEST(NetmcQft, Eq19FailsAt35HzAndThePidCrossCouplingAt10Hz) {

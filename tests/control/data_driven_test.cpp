@@ -243,7 +243,7 @@ CircleRun run_circle(Law law, DataModelForm form, Plant plant_kind, ContourCoupl
   circle.center = Eigen::Vector2d(0.075, 0.075);
   circle.radius_m = 0.05;
   circle.period_s = 5.0;
-  circle.revolutions = 2.0;  // digest 3.7 [A]
+  circle.revolutions = 2.0;  // netmc's assumption [A] for paper 002's circle
   auto trajectory = std::make_shared<CircleTrajectory>(circle);
   std::unique_ptr<DataDrivenAxisLaw> axes[2];
   for (auto& axis : axes) {
@@ -314,7 +314,7 @@ TEST(DataDrivenContouring, FullFormWithCouplingIsStableOnEquation2) {
 }
 
 // Neither fix alone is enough on eq. 2: the compact form (paper 002's eq. 9) diverges with the
-// coupling, and the full form with the digest's eps(k+1) ~ eps(k) (measured: 8-15 ms).
+// coupling, and the full form with the per-axis eps(k+1) ~ eps(k) (measured: 8-15 ms).
 TEST(DataDrivenContouring, EachFixAloneDivergesOnEquation2) {
   for (Law law : {Law::mfac, Law::mfa_dtsmc}) {
     const CircleRun compact =

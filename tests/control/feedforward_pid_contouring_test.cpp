@@ -1,7 +1,7 @@
 // Paper 004 in the time domain: the per-axis loop of eq. 2 with feedforward against the
 // continuous closed loop of the frequency library, the feedforward term, the cross-coupling laws
 // of eq. 13 and eq. 20 against their Tustin difference equations expanded by hand, and the
-// distribution of the coupling command (digest 4.3, section 0).
+// distribution of the coupling command (paper 004, eq. 6, with the signs of paper 001's eq. 15).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,7 +21,7 @@ namespace netmc::control {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kLoopPeriodS = 5e-5;  // 20 kHz, digest 4.6 [A]
+constexpr double kLoopPeriodS = 5e-5;  // 20 kHz, netmc's choice [A]
 
 plant::ResonantStageParameters x_stage() {
   plant::ResonantStageParameters p;

@@ -1,6 +1,6 @@
 // Frequency-response library against independent truth: closed forms of first- and second-order
 // responses, hand algebra for series/parallel/feedback, the bilinear transform's known
-// coefficients and warping, the exact step response, and paper 004's QFT check (digest 4.4).
+// coefficients and warping, the exact step response, and paper 004's QFT check (section 3.2).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -192,8 +192,8 @@ TEST(QftBounds, PlantAndFeedbackFollowTheTables) {
       EXPECT_LT(std::abs(plant.at(2 * kPi * f) - expected), 1e-10 * std::abs(expected)) << f;
     }
   }
-  // Digest 4.2: K_p,x = 789 568 N/m, K_p,y = 986 960 N/m, f_i = 5.556 Hz. At low frequency the
-  // integral term dominates: G_c(jω) -> K_p 2π f_i/(jω).
+  // From paper 004, eq. 2 and Tables 1/2: K_p,x = 789 568 N/m, K_p,y = 986 960 N/m, f_i = 5.556 Hz.
+  // At low frequency the integral term dominates: G_c(jω) -> K_p 2π f_i/(jω).
   const double w = 1e-4;
   const double kp_x = std::abs(stage_axis_feedback(paper004_x_axis()).at(w)) * w / (2 * kPi * 50.0 / 9.0);
   const double kp_y = std::abs(stage_axis_feedback(paper004_y_axis()).at(w)) * w / (2 * kPi * 50.0 / 9.0);
@@ -214,17 +214,17 @@ const QftBoundCheck& at_frequency(const std::vector<QftBoundCheck>& checks, doub
   throw std::logic_error("no check at " + std::to_string(f) + " Hz");
 }
 
-// Within 2 % of the digest's value.
-void expect_within_2_percent(double measured, double digest, const std::string& what) {
-  EXPECT_NEAR(measured, digest, 0.02 * digest) << what;
+// Within 2 % of the independent check's value (client/qft_command.cpp).
+void expect_within_2_percent(double measured, double expected, const std::string& what) {
+  EXPECT_NEAR(measured, expected, 0.02 * expected) << what;
 }
 
-TEST(QftBounds, Eq20MeetsBothBoundsWithTheDigestNumbers) {
+TEST(QftBounds, Eq20MeetsBothBoundsWithTheReferenceNumbers) {
   const auto checks = check_qft_bounds(paper004_eq20_cross_coupling());
   ASSERT_EQ(checks.size(), 7u);
   expect_within_2_percent(at_frequency(checks, 0.1).max_sensitivity, 0.10, "max|S| at 0.1 Hz");
   expect_within_2_percent(at_frequency(checks, 0.5).max_sensitivity, 0.10, "max|S| at 0.5 Hz");
-  // 0.1031 here: the digest's "0.10 (0.1-1 Hz)" is rounded to two decimals.
+  // 0.1031 here: the independent check's "0.10 (0.1-1 Hz)" is rounded to two decimals.
   EXPECT_NEAR(at_frequency(checks, 1.0).max_sensitivity, 0.10, 0.005) << "max|S| at 1 Hz";
   expect_within_2_percent(at_frequency(checks, 10.0).max_sensitivity, 0.215, "max|S| at 10 Hz");
   expect_within_2_percent(at_frequency(checks, 35.0).max_sensitivity, 0.71, "max|S| at 35 Hz");

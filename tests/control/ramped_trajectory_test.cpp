@@ -1,4 +1,4 @@
-// The motions of paper 004's Table 4 (digest 4.6 [A]) against closed forms: the circle with
+// The motions of paper 004's Table 4 (as netmc assumes them [A]) against closed forms: the circle with
 // quintic angle ramps that starts and ends at rest, the jerk-limited rest-to-rest move, and the
 // sharp-angle polyline built from it (continuity, the limits, the exact end point).
 #include <gtest/gtest.h>

@@ -21,7 +21,7 @@ using test::relative_error;
 
 TEST(BallScrewDrive, NominalCoefficientsMatchPaper002) {
   const BallScrewDrive drive{BallScrewParameters{}};
-  // Digest 3.1 [D]: B/J = 318.75 1/s, Ka Kt rg / J = 18000 mm/(V s^2) = 18 m/(V s^2).
+  // Derived from paper 002, eq. 1: B/J = 318.75 1/s, Ka Kt rg / J = 18000 mm/(V s^2) = 18 m/(V s^2).
   EXPECT_NEAR(drive.damping_rate(), 318.75, 1e-12);
   EXPECT_NEAR(drive.input_gain(), 18.0, 1e-12);
 }

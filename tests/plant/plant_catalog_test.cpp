@@ -34,8 +34,8 @@ TEST(PlantCatalog, AxisCountMustBeOneToThree) {
   EXPECT_THROW(seed001_axis_parameters(3), std::invalid_argument);
 }
 
-TEST(PlantCatalog, Seed001AxesHaveTheDigestDynamicsAndOpposingFriction) {
-  // Digest 1.7 [A]: speed-mode servos, X 20/(s+20), Y 10/(s+10) from command to velocity.
+TEST(PlantCatalog, Seed001AxesHaveTheAssumedDynamicsAndOpposingFriction) {
+  // netmc's assumption [A]: speed-mode servos, X 20/(s+20), Y 10/(s+10) from command to velocity.
   const auto x = seed001_axis_parameters(0);
   EXPECT_EQ(x.a1, 0.0);
   EXPECT_EQ(x.a2, -20.0);

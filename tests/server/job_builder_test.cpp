@@ -238,7 +238,7 @@ TEST(JobBuilder, PlantOverridesAndDisturbancesPerAxis) {
   const sim::ContourJob job = build_contour_job(spec);
   EXPECT_NE(trajectory_of(job).describe().find("heart"), std::string::npos);
   const std::string x = job.axes[0]->describe(), y = job.axes[1]->describe();
-  // paper 002's 3 kg load: J' = 0.8e-3 + 3 * 0.005^2 = 0.875e-3 kg m^2 (digest 3.7 [A])
+  // paper 002's 3 kg load: J' = 0.8e-3 + 3 * 0.005^2 = 0.875e-3 kg m^2 (netmc's assumption [A])
   EXPECT_NE(y.find("0.000875"), std::string::npos) << y;
   EXPECT_EQ(x.find("0.000875"), std::string::npos) << x;
   EXPECT_NE(y.find("step 0.8 from 2.2 s to 5.2 s"), std::string::npos) << y;
