@@ -10,11 +10,11 @@
 //   (seed001's X axis: a2 = -20 1/s, b = 20; its Y and third axes: -10, 10), made of netmc's own
 //   model, netmc::plant::SecondOrderAxis: a plugin may link netmc's libraries.
 //
-// The whole contract is in <control/plugin/component_plugin.hpp>. Replace either part with your
+// The whole contract is in <netmc/control/plugin/component_plugin.hpp>. Replace either part with your
 // own law or model; keep the NETMC_COMPONENT_PLUGIN line at the end (nullptr for a part you do
 // not provide).
-#include <control/plugin/component_plugin.hpp>
-#include <plant/second_order_axis.hpp>
+#include <netmc/control/plugin/component_plugin.hpp>
+#include <netmc/plant/second_order_axis.hpp>
 
 #include <algorithm>
 #include <cmath>

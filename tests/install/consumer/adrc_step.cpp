@@ -2,7 +2,7 @@
 // constant load d the controller is not told of, asked to hold 1 mm. The observer's estimate of
 // the load cancels it, so the axis settles on the reference: a PD loop with the same gains would
 // stay d / kp = 1.25 mm short. Exits 1 if it does not settle.
-#include <control/axis/adrc_controller.hpp>
+#include <netmc/control/axis/adrc_controller.hpp>
 
 #include <cmath>
 #include <cstdio>
