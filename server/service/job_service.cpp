@@ -118,8 +118,10 @@ void JobService::handle(const std::shared_ptr<management::Peer>& session,
       }
       if (!admin && it->second->session.lock() != session) {
         session->send(error_response(request.request_id(), "cancel: job " + std::to_string(it->first) +
-                                                               " was submitted on another connection; only it "
-                                                               "(or a client with the admin token) may cancel the job"));
+                                                               " was submitted on another connection; only it, "
+                                                               "or a client with the server's admin token, may cancel "
+                                                               "the job (netmc-server --admin-token-file FILE; the "
+                                                               "client names FILE in NETMC_TOKEN_FILE)"));
         return;
       }
       Job& job = *it->second;
@@ -556,16 +558,27 @@ std::vector<NodeRecord> JobService::find_nodes(const Job& job, const JobChannels
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     if (!node) {
+      // Say what was found: a misspelt axis or a node started without it is then plain to see.
+      std::string seen;
+      for (const auto& known : nodes_.nodes()) {
+        std::string axes;
+        for (const auto& name : known.status.axes()) axes += (axes.empty() ? "" : ",") + name;
+        seen += (seen.empty() ? "" : "; ") + known.status.node() + " (" + axes + ")";
+      }
       throw JobFailure("no axis node for axis " + axis + " was discovered within " +
-                       std::to_string(options_.discovery_timeout.count()) + " ms");
+                       std::to_string(options_.discovery_timeout.count()) + " ms (nodes discovered: " +
+                       (seen.empty() ? std::string("none") : seen) +
+                       "); start a node with netmc-axis --axes " + axis + ", or choose the job's axes with --axes");
     }
     if (node->status.clock() != clock) {
       throw JobFailure("node " + node->status.node() + " runs the " + node->status.clock() +
-                       " clock but the job needs " + clock);
+                       " clock but the job needs " + clock + ": start the node with netmc-axis --clock " + clock +
+                       ", or run the job with --clock " + node->status.clock());
     }
     if (node->status.plant() != job.spec.plant()) {
       throw JobFailure("node " + node->status.node() + " hosts plant '" + node->status.plant() +
-                       "' but the job needs '" + job.spec.plant() + "'");
+                       "' but the job needs '" + job.spec.plant() + "': start the node with netmc-axis --plant " +
+                       job.spec.plant());
     }
     // Another server's hold: a server that died (or this one before its restart) holds the axis
     // until the node's hold lease ends (10 s without contact); a live one keeps it.
@@ -637,7 +650,11 @@ void JobService::run(const std::shared_ptr<Job>& shared_job) {
     channels.events = &events;
     channels.iteration_logs = iteration_logs_;
     for (const auto& axis : channels.axes) channels.setpoints.push_back(setpoint_writer(realtime, axis));
+    // "running 0/N" alone would read as a loop that does not start: say what it waits for.
+    set_waiting_for(job, "its axis nodes (discovery, up to " + std::to_string(options_.discovery_timeout.count()) +
+                             " ms per axis)");
     const std::vector<NodeRecord> nodes = find_nodes(job, channels);
+    set_waiting_for(job, "");
     for (const auto& node : nodes) channels.nodes.push_back(node.status.participant());
     struct ReportForgeries {
       const JobChannels& channels;
@@ -769,6 +786,15 @@ void JobService::conclude(const std::shared_ptr<Job>& job, netmc::v1::JobFinishe
     options_.store->ended(job->id, finished.state(), finished.error(), finished.SerializeAsString(), std::move(tell));
   } else {
     tell();
+  }
+}
+
+void JobService::set_waiting_for(Job& job, const std::string& what) {
+  std::lock_guard lock(mutex_);
+  if (what.empty()) {
+    job.status.clear_waiting_for();
+  } else {
+    job.status.set_waiting_for(what);
   }
 }
 

@@ -150,6 +150,8 @@ class JobService {
   void run(const std::shared_ptr<Job>& job);
   // Under mutex_: a queued job ends without running (cancelled, its client gone).
   void end_queued(Job& job, const std::string& reason);
+  // What a running job waits for before its first cycle, for `netmc status` ("" none). Takes mutex_.
+  void set_waiting_for(Job& job, const std::string& what);
   // The job has ended with `finished`: kept in the store, then its status, watchers and client.
   void conclude(const std::shared_ptr<Job>& job, netmc::v1::JobFinished finished);
   // netmc jobs: the history, from the store (or from memory without one).
