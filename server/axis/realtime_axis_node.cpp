@@ -28,20 +28,6 @@ constexpr std::size_t kFeedbackTimes = 4096;
 // Setpoints in flight whose server send time is kept (tau_ca); more is not a loop but a flood.
 constexpr std::size_t kMaxSetpointsInFlight = 4096;
 
-// An event of one axis about the job it runs; the detail cut to the topic's bound.
-netmc::dds::AxisEvent job_event(const std::string& axis_name, const std::string& server, std::uint64_t job_id,
-                                std::uint32_t iteration, netmc::dds::AxisEventKind kind,
-                                const std::string& detail = {}) {
-  netmc::dds::AxisEvent event;
-  event.axis(axis_name);
-  event.server(server);
-  event.job_id(job_id);
-  event.iteration(iteration);
-  event.kind(kind);
-  event.detail(detail.substr(0, 255));
-  return event;
-}
-
 bool ramping(drive::PowerState state) {
   return state == drive::PowerState::quick_stop_active || state == drive::PowerState::fault_reaction_active;
 }
@@ -321,15 +307,25 @@ void RealtimeAxisNode::prepare(const std::string& axis_name, OwnedAxis& axis, co
 
 void RealtimeAxisNode::say_ready(const std::string& axis_name, OwnedAxis& axis) {
   if (axis.ready_for == 0) return;
-  auto event = job_event(axis_name, axis.server, axis.job_id, axis.ready_for, netmc::dds::AXIS_READY);
+  netmc::dds::AxisEvent event;
+  event.axis(axis_name);
+  event.server(axis.server);
+  event.job_id(axis.job_id);
+  event.iteration(axis.ready_for);
+  event.kind(netmc::dds::AXIS_READY);
   link_.publish_event(event);
   axis.ready_for = 0;
 }
 
 void RealtimeAxisNode::fail_preparation(const std::string& axis_name, OwnedAxis& axis, const std::string& why) {
   spdlog::error("axis {}: {}", axis_name, why);
-  auto event = job_event(axis_name, axis.server, axis.job_id, axis.ready_for, netmc::dds::AXIS_FAULT,
-                         "axis " + axis_name + ": " + why);
+  netmc::dds::AxisEvent event;
+  event.axis(axis_name);
+  event.server(axis.server);
+  event.job_id(axis.job_id);
+  event.iteration(axis.ready_for);
+  event.kind(netmc::dds::AXIS_FAULT);
+  event.detail(("axis " + axis_name + ": " + why).substr(0, 255));
   link_.publish_event(event);
   axis.ready_for = 0;
   axis.phase = Phase::stopping;
@@ -615,10 +611,16 @@ void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clo
     // The iteration cannot go on with this axis stopped: the server ends the job (its other axes
     // stop as commanded) instead of running its loops on to a completion that means nothing, or
     // winding them up until a command trips an axis. Not latched: the next job may run.
-    auto event = job_event(axis_name, axis.server, axis.job_id, axis.iteration, netmc::dds::AXIS_FAULT,
-                           fmt::format("quick stop after {:.0f} ms without a setpoint, at cycle {} of iteration {} "
-                                       "(the node's watchdog, netmc-axis --watchdog {} ms)",
-                                       silent_ms, k, axis.iteration, watchdog_.count()));
+    netmc::dds::AxisEvent event;
+    event.axis(axis_name);
+    event.server(axis.server);
+    event.job_id(axis.job_id);
+    event.iteration(axis.iteration);
+    event.kind(netmc::dds::AXIS_FAULT);
+    event.detail(fmt::format("quick stop after {:.0f} ms without a setpoint, at cycle {} of iteration {} (the node's "
+                             "watchdog, netmc-axis --watchdog {} ms)",
+                             silent_ms, k, axis.iteration, watchdog_.count())
+                     .substr(0, 255));
     link_.publish_event(event);
   }
   if (axis.endpoint->fault()) report_fault(axis_name, axis);  // before the sample
@@ -636,7 +638,12 @@ void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clo
 void RealtimeAxisNode::end_iteration(const std::string& axis_name, OwnedAxis& axis) {
   axis.report_due = false;
   if (!axis.endpoint) return;
-  auto event = job_event(axis_name, axis.server, axis.job_id, axis.iteration, netmc::dds::AXIS_ITERATION_ENDED);
+  netmc::dds::AxisEvent event;
+  event.axis(axis_name);
+  event.server(axis.server);
+  event.job_id(axis.job_id);
+  event.iteration(axis.iteration);
+  event.kind(netmc::dds::AXIS_ITERATION_ENDED);
   event.samples(axis.samples);
   event.lost_setpoints(axis.endpoint->lost_setpoints());
   event.stale_setpoints(axis.endpoint->stale_setpoints());

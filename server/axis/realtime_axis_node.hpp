@@ -82,8 +82,7 @@ class RealtimeAxisNode {
     std::map<std::uint64_t, double> server_send_times;
     // Round trip of the loop on this node's clock: feedback k written -> setpoint k in. The
     // newest kFeedbackTimes cycles' send times, by cycle modulo their number; a setpoint older
-    // than that, or than the newest one timed, is not timed. Cleared when an iteration starts
-    // (the same 4096 entries: nothing allocated).
+    // than that, or than the newest one timed, is not timed. Sized once for the node's life.
     struct FeedbackTime {
       std::uint64_t cycle = 0;
       Clock::time_point sent;
