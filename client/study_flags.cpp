@@ -13,12 +13,19 @@
 namespace netmc::cli {
 namespace {
 
+// A spec is a few kilobytes; the bound keeps a wrong path (/dev/zero, a log) from filling memory.
+constexpr std::size_t kMaxSpecBytes = 4u << 20;
+
 std::string read_file(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw std::invalid_argument("--spec: cannot read '" + path + "'");
-  std::ostringstream content;
-  content << file.rdbuf();
-  return content.str();
+  std::string content(kMaxSpecBytes + 1, '\0');
+  file.read(content.data(), static_cast<std::streamsize>(content.size()));
+  content.resize(static_cast<std::size_t>(file.gcount()));
+  if (content.size() > kMaxSpecBytes) {
+    throw std::invalid_argument("--spec: '" + path + "' is larger than 4 MiB (expected a JSON job spec)");
+  }
+  return content;
 }
 
 }  // namespace

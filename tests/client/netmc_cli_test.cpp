@@ -162,4 +162,11 @@ TEST(NetmcCli, JsonSpecFileRunsAndBadSpecNamesTheFile) {
   std::filesystem::remove(spec);
 }
 
+TEST(NetmcCli, SpecLargerThanItsBoundIsRefusedWithoutReadingItAll) {
+  // /dev/zero never ends: read whole, it would fill memory.
+  const Result endless = run("sim --spec /dev/zero");
+  EXPECT_EQ(endless.exit_code, 2);
+  EXPECT_NE(endless.output.find("--spec: '/dev/zero' is larger than 4 MiB"), std::string::npos) << endless.output;
+}
+
 }  // namespace
