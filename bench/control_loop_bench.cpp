@@ -113,7 +113,7 @@ void BM_ControlStep_Adrc_TwoAxes(benchmark::State& state) { control_step(state, 
 // One full ILC iteration (1601 cycles: plants, sensors, delayed links, controller, metrics) of
 // the seed001 adrc+ilccc job. The runner is built once; each benchmark iteration is the next ILC
 // iteration. The Q-filtered law is used because the paper's law drifts unstable after ~100
-// iterations (docs/user-guide/default-study.md), which a long benchmark run would reach.
+// iterations (docs/reproductions/paper-001.md), which a long benchmark run would reach.
 void BM_SimulatedIteration_Seed001_AdrcIlccc(benchmark::State& state) {
   auto spec = netmc::cli::seed001_job("adrc+ilccc");
   netmc::job::set_gain(*spec.mutable_controller(), "ilccc", "q_cutoff_hz", 20.0);

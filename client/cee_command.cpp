@@ -173,7 +173,7 @@ std::function<int()> add_cee_command(CLI::App& app) {
       }
       fmt::print("\n");
     }
-    // Why the order is what it is (docs/reproductions.md, "Contour-error estimation cost").
+    // Why the order is what it is (docs/reproductions/paper-002.md, "Contour-error estimation cost").
     fmt::print("The time per estimate follows the curve evaluations (C and C' at one t): Newton takes one per\n"
                "iteration, Steffensen two (phi(t) and phi(phi(t))), one for its last. Newton's map converges\n"
                "linearly at the rate |(C - P).C''| / |C'|^2 (offset times curvature, ~1e-3 here), so it needs few\n"

@@ -20,7 +20,7 @@
 //   Y a1=0, a2=-10, b=10, d=-70 tanh(y'/0.05) mm/s^2. In metres the friction becomes
 //   0.050 / 0.070 m/s^2 with a velocity scale of 5e-5 m/s; a1, a2, b are unit-free in length
 //   (b multiplies the command, whose unit the paper leaves open).
-//   Calibrated here (docs/user-guide/default-study.md, "Plant for paper 001"): velocity scale 1 mm/s and levels 60 / 85
+//   Calibrated here (docs/reproductions/paper-001.md, "Plant for paper 001"): velocity scale 1 mm/s and levels 60 / 85
 //   mm/s^2 give ADRC-only e_max = 0.083 mm (paper: 0.0811 mm). With the first assumed 0.05 mm/s the
 //   friction is almost a step at each velocity reversal; the paper's PD-ILC then stalls at
 //   e_max/ADRC = 0.47 after 11 iterations and drifts upwards.

@@ -46,7 +46,7 @@ FootPoint newton_foot_point(const ReferenceTrajectory& curve, const Eigen::Vecto
 
 // Two curve evaluations per full iteration (phi(t) and phi(phi(t))), one for the last when phi(t)
 // already lands within tolerance: Steffensen is cheaper than Newton only where Newton needs more
-// than twice its iterations (docs/reproductions.md, "Contour-error estimation cost").
+// than twice its iterations (docs/reproductions/paper-002.md, "Contour-error estimation cost").
 FootPoint steffensen_foot_point(const ReferenceTrajectory& curve, const Eigen::Vector2d& point,
                                 double t0, const FootPointOptions& options) {
   double t = clamp_time(curve, t0);

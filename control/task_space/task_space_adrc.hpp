@@ -42,7 +42,7 @@
 // carries it, 3.3 ms when y does); in simulation it holds 0.8 ms and fails at 1 ms constant delay.
 // Feeding the observers the command of d periods ago (observer_input_delay = d, d h = the loop
 // delay) makes their model right again (a Smith-predictor-like observer input) and restores the
-// margin up to 2 ms (`netmc sim --preset thesis-ellipse-delay`, docs/reproductions.md).
+// margin up to 2 ms (`netmc sim --preset thesis-ellipse-delay`, docs/reproductions/thesis.md).
 
 #include <array>
 #include <deque>

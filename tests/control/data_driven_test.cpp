@@ -328,7 +328,7 @@ TEST(DataDrivenContouring, EachFixAloneDivergesOnEquation2) {
 }
 
 // On the ballscrew plant (eq. 1 sampled exactly, as `--plant ballscrew`) the paper's compact form
-// diverges within 20 ms whatever the coupling (docs/reproductions.md, "Paper 002's data-driven controllers"). So
+// diverges within 20 ms whatever the coupling (docs/reproductions/paper-002.md, "Paper 002's data-driven controllers"). So
 // does the full form: the exact sampled drive is (8.1 z + 7.3) / ((z - 1)(z - 0.727)) um/V, so
 // u(k) already moves y(k+1), which the d = 1 model (exact for eq. 2 only) does not hold. These
 // document the present limit; a data model that fixes it must change them and docs/status-and-limits.md.

@@ -58,7 +58,7 @@ TEST(SarcStudy, SuddenHaltCostsTheLocalFrameMoreThanTheGlobalFrame) {
 // point's tangent, off by about kappa e_t^2 / 2 and by the frame's turning (alpha' e_t), both
 // growing with the tangential error e_t. With the thesis gains e_t stays near 5 um and the frames
 // agree within 10 %; with Lambda_m = 2, K_m = 5 (e_t 30-55 um RMS) GTCF must beat LTCF by the
-// thesis's margin (GTCF <= 0.6 LTCF; thesis 0.39, measured here over 6 s: see docs/reproductions.md).
+// thesis's margin (GTCF <= 0.6 LTCF; thesis 0.39, measured here over 6 s: see docs/reproductions/thesis.md).
 TEST(SarcStudy, LocalFrameLosesToGlobalFrameWhenTheTangentialErrorIsLarge) {
   const auto soft = [](const std::string& controller) {
     ContourJob job = testing::thesis_ellipse_job(controller, 7.0);

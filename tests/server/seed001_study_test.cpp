@@ -56,7 +56,7 @@ TEST(Seed001Study, IlcLearnsAndStaysBoundedOver50Iterations) {
 }
 
 TEST(Seed001Study, PaperLawWithoutQFilterDivergesSlowly) {
-  // Where the method breaks down (docs/user-guide/default-study.md): the PD law of eq. 14 is not
+  // Where the method breaks down (docs/reproductions/paper-001.md): the PD law of eq. 14 is not
   // monotonically convergent on this relative-degree-2 loop; after its best iteration the error
   // grows again.
   StudyPlan plan = make_preset("seed001");

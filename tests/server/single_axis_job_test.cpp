@@ -92,7 +92,7 @@ TEST(SingleAxisJob, DeadZonePresetReproducesTableFiveOnesOrder) {
   EXPECT_LT(m.at("C3 II").final_estimates[static_cast<std::size_t>(left - names.begin())], 3.42);
 }
 
-// Thesis section 5.5 as docs/reproductions.md runs it: each axis of a contouring stage (linmotor, cogging
+// Thesis section 5.5 as docs/reproductions/thesis.md runs it: each axis of a contouring stage (linmotor, cogging
 // included) gets a dead zone; a single-axis axis-diarc-dead-zone run per axis (the spec files in
 // tests/data) identifies it; its inverse, with the slopes in the contouring controller's own input
 // gain (E^ m times the nominal mass the controller assumes), goes in front of GTCF-SARC on the

@@ -51,7 +51,7 @@ void expect_contours_within(const StudyPlan& plan, const std::string& label, Sho
   EXPECT_LT(m.e_max_steady_m, max_bound_m) << label;
 }
 
-// The full runs measure 1.4-2.4 um RMS and 3.7-5.0 um max (docs/reproductions.md); the bounds are about twice
+// The full runs measure 1.4-2.4 um RMS and 3.7-5.0 um max (docs/reproductions/thesis.md); the bounds are about twice
 // that and far below what a wrong sign or a lost adaptation gives (mm, or unstable).
 TEST(ThesisPresets, GtcfControllersContourTheEllipseAndCaseAStably) {
   const StudyPlan ellipse = make_preset("thesis-ellipse");

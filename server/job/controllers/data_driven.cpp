@@ -72,7 +72,7 @@ void register_data_driven(ControllerRegistry& registry) {
   // No plant: paper 002's gains diverge on netmc's sampled ball screw with either data model.
   dtsmc.plants = {};
   dtsmc.required_gains = {"data_model"};
-  dtsmc.required_why = "with paper 002's gains neither form holds a netmc plant (compact, the paper's eq. 9, and full both diverge on the sampled ball screw within 20 ms; full holds the paper's own eq. 2; docs/reproductions.md, Paper 002's data-driven controllers), so the form is the spec's choice";
+  dtsmc.required_why = "with paper 002's gains neither form holds a netmc plant (compact, the paper's eq. 9, and full both diverge on the sampled ball screw within 20 ms; full holds the paper's own eq. 2; docs/reproductions/paper-002.md, Paper 002's data-driven controllers), so the form is the spec's choice";
   dtsmc.make_group = [](const ControllerContext& context, std::string_view name,
                         std::unique_ptr<control::ContourCompensator>) -> std::unique_ptr<control::GroupController> {
     const auto axis_law = [&](std::size_t axis) {
@@ -116,7 +116,7 @@ void register_data_driven(ControllerRegistry& registry) {
   mfac.gain_groups = {"mfac"};
   mfac.plants = {};  // as mfa-dtsmc
   mfac.required_gains = {"data_model"};
-  mfac.required_why = "with paper 002's gains neither form holds a netmc plant (compact, the paper's eq. 9, and full both diverge on the sampled ball screw within 20 ms; full holds the paper's own eq. 2; docs/reproductions.md, Paper 002's data-driven controllers), so the form is the spec's choice";
+  mfac.required_why = "with paper 002's gains neither form holds a netmc plant (compact, the paper's eq. 9, and full both diverge on the sampled ball screw within 20 ms; full holds the paper's own eq. 2; docs/reproductions/paper-002.md, Paper 002's data-driven controllers), so the form is the spec's choice";
   mfac.make_group = [](const ControllerContext& context, std::string_view name,
                        std::unique_ptr<control::ContourCompensator>) -> std::unique_ptr<control::GroupController> {
     const auto axis_law = [&](std::size_t axis) {
