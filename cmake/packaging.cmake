@@ -64,6 +64,16 @@ foreach(unit netmc-server.service netmc-axis@.service)
 endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/server/systemd/server.env ${PROJECT_SOURCE_DIR}/server/systemd/axis.env
   DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/etc-netmc COMPONENT runtime)
+# Drop-ins that hand root-owned keys to the units' dynamic users as credentials.
+install(FILES ${PROJECT_SOURCE_DIR}/server/systemd/security-axis.conf
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/systemd/netmc-axis@.service.d RENAME security.conf
+  COMPONENT runtime)
+install(FILES ${PROJECT_SOURCE_DIR}/server/systemd/security-server.conf
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/systemd/netmc-server.service.d RENAME security.conf
+  COMPONENT runtime)
+install(FILES ${PROJECT_SOURCE_DIR}/server/systemd/admin-token-server.conf
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/systemd/netmc-server.service.d RENAME admin-token.conf
+  COMPONENT runtime)
 # Example job specs, one per preset, written by the program itself at build time.
 set(NETMC_EXAMPLE_SPECS ${PROJECT_BINARY_DIR}/example-specs)
 add_custom_command(OUTPUT ${NETMC_EXAMPLE_SPECS}/seed001.json

@@ -120,7 +120,8 @@ int main(int argc, char** argv) {
       ->envname("NETMC_SERVER_TLS_CLIENT_CA");
   app.add_option("--admin-token-file", admin_token_file,
                  "A client showing the token in this file may also cancel jobs of other connections "
-                 "(netmc cancel); it is accepted wherever --token-file's is");
+                 "(netmc cancel); it is accepted wherever --token-file's is")
+      ->envname("NETMC_ADMIN_TOKEN_FILE");
   std::vector<std::string> allowed_plugins;
   app.add_option("--allow-plugin", allowed_plugins,
                  "A controller plugin (shared object) jobs may name as --controller plugin:PATH[:...], by this "

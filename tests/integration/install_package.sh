@@ -51,8 +51,19 @@ if command -v systemd-analyze >/dev/null; then
   (cd "$units" && SYSTEMD_LOG_LEVEL=warning systemd-analyze verify --man=no netmc-server.service netmc-axis@lab1.service) \
     2>&1 | tee "$tmp/verify.log"
   ! grep -v "^$" "$tmp/verify.log" | grep -q . || { echo "FAIL: systemd-analyze verify complained"; exit 1; }
-  rm "$units/netmc-axis@lab1.service"
   echo "systemd-analyze verify: netmc-server.service, netmc-axis@.service: no complaint"
+  # The same with the example drop-ins (credentials for the keys and the admin token) in place.
+  cp -r "$prefix/share/netmc/examples/systemd/"*.service.d "$units/"
+  [ "$(ls "$units"/*.service.d/*.conf | wc -l)" = 3 ] || { echo "FAIL: expected 3 example drop-ins"; ls -R "$units"; exit 1; }
+  (cd "$units" && SYSTEMD_LOG_LEVEL=warning systemd-analyze verify --man=no netmc-server.service netmc-axis@lab1.service) \
+    2>&1 | tee "$tmp/verify.log"
+  ! grep -v "^$" "$tmp/verify.log" | grep -q . || { echo "FAIL: systemd-analyze verify complained of a drop-in"; exit 1; }
+  # A drop-in systemd cannot read must be seen to fail, or the check above proves nothing.
+  echo "ExecStart=" >>"$units/netmc-server.service.d/security.conf"   # clears the command: refused
+  ! (cd "$units" && SYSTEMD_LOG_LEVEL=warning systemd-analyze verify --man=no netmc-server.service) >/dev/null 2>&1 ||
+    { echo "FAIL: systemd-analyze verify did not read the drop-ins"; exit 1; }
+  rm -r "$units"/*.service.d "$units/netmc-axis@lab1.service"
+  echo "systemd-analyze verify with the example drop-ins (security, admin token): no complaint"
 fi
 
 cmake -S "$source_dir/tests/install/consumer" -B "$tmp/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
