@@ -5,6 +5,7 @@
 // (planar_contour_group.hpp), three-axis groups the circle in space and GTCF-SARC
 // (spatial_contour_group.hpp), one-axis groups a tracking reference and a tracking controller
 // (single_axis_group.hpp). Vectors have a fixed capacity so that a cycle never allocates.
+// See docs/architecture.md, "One cycle through the code".
 
 #include <Eigen/Dense>
 #include <array>

@@ -2,6 +2,7 @@
 // Common interface of every simulated axis: the axis node and the in-process sim drive all plants
 // through it, one held input per call (paper 001, eq. 2, cited but not printed in the source text;
 // read from its Fig. 4 and eq. 4).
+// See docs/architecture.md, "Layers and include rules".
 
 #include <memory>
 #include <string>

@@ -7,6 +7,7 @@
 // drive's own configuration (a map file), else, for a simulated drive, its plant's rating (travel
 // and rated input). A drive that is not simulated must end up with a command limit, a position
 // window and a velocity limit, or the node refuses to start.
+// See docs/architecture.md, "Where safety lives".
 
 #include <map>
 #include <memory>

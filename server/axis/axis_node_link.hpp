@@ -2,6 +2,7 @@
 // What both kinds of axis node (lockstep, realtime) share: the node's identity and its claim on
 // its axes, its DDS endpoints, the server that holds it, the clock probes it answers, and the
 // start of a job from its spec.
+// See docs/architecture.md, "Threads and queues" and "Where safety lives".
 
 #include <atomic>
 #include <chrono>

@@ -3,6 +3,7 @@
 // runs the same AxisEndpoint as the in-process simulation (netmc's simulated drive under its
 // supervision, sensor, downlink netsim), so a distributed lockstep run reproduces `netmc sim` bit
 // for bit. Only simulated drives run in virtual time: hardware needs --clock realtime.
+// See docs/architecture.md, "One cycle through the code".
 
 #include <atomic>
 #include <map>

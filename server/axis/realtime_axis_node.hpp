@@ -15,6 +15,7 @@
 // One thread does it all: it sleeps on a DDS WaitSet until the next thing is due, so a setpoint
 // goes from Fast DDS's receive thread to the actuator in one wake-up, and the samples of all the
 // node's axes are taken back to back.
+// See docs/architecture.md, "One cycle through the code" and "Threads and queues".
 
 #include <atomic>
 #include <chrono>

@@ -5,6 +5,7 @@
 // loop busy dropping them while the job's control waited. Here each sample is taken on Fast DDS's
 // receive thread as it arrives; only those `accept` keeps (the participant that holds the axis,
 // for its job) reach the node's loop, through a bounded queue; the others are counted and gone.
+// See docs/architecture.md, "Threads and queues".
 
 #include <fastdds/dds/core/condition/GuardCondition.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>

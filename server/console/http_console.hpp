@@ -6,6 +6,7 @@
 // Hostile input is bounded here: a request's header and body, the time to send it, the number of
 // connections, a WebSocket frame from the browser, and each browser's queue of messages (the
 // oldest dropped first, counted). No request names a file: the files served are a fixed list.
+// See docs/architecture.md, "Threads and queues".
 
 #include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange unincluded
 

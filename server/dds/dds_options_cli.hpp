@@ -1,5 +1,6 @@
 #pragma once
 // The DDS flags shared by netmc-server and netmc-axis.
+// See docs/architecture.md, "Processes".
 
 #include <CLI/CLI.hpp>
 

@@ -2,6 +2,7 @@
 // The clock a node schedules realtime jobs on. Each host keeps its own; nothing assumes two
 // hosts' clocks agree: the server measures every node's offset (ClockOffsetEstimator) and
 // sends each node its job's start time on that node's own clock.
+// See docs/architecture.md, "One cycle through the code" (realtime).
 
 #include <chrono>
 #include <string>

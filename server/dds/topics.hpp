@@ -2,6 +2,7 @@
 // The netmc topics of the DDS data plane (QoS per kind in server/dds/dds_context.hpp), versioned with the types in
 // idl/dds_types.idl. Realtime and lockstep commands travel on topics of their own because their
 // QoS differ: a realtime stream never waits for a lost sample, a lockstep exchange needs every one.
+// See docs/architecture.md, "DDS topics and QoS".
 
 namespace netmc::dds {
 

@@ -2,6 +2,7 @@
 // Runs the ILC iterations of a ContourJob in-process, in virtual time, by wiring the axis-node
 // side (AxisEndpoint) and the server side (ContourServer) with direct calls. netmc-server and
 // netmc-axis wire the same two objects through DDS in lockstep mode. Deterministic for a seed.
+// See docs/architecture.md, "One cycle through the code".
 
 #include <functional>
 #include <vector>
