@@ -4,10 +4,8 @@
 # access control and AES-GCM encryption of every topic (scripts/make-lab-pki.sh), alternately
 # RUNS times each. Prints tau (setpoint arrival - sample time) and the deadline misses of every
 # run. Measured, never asserted. Usage: bench/dds_security_cost.sh BUILD_DIR [RUNS]
-set -euo pipefail
-build=$(cd "$1" && pwd)
+source "$(dirname "$0")/../tests/integration/lib.sh" "$@"
 runs=${2:-3}
-source "$(dirname "$0")/../tests/integration/lib.sh"
 pki=$tmp/pki
 bash "$(dirname "$0")/../scripts/make-lab-pki.sh" "$pki" --server netmc-server --node cost-x:x --node cost-y:y >/dev/null
 
@@ -15,11 +13,11 @@ one_run() {  # one_run LABEL [--security DIR]: prints LABEL and the run's tau li
   local label=$1
   shift
   local before=${#pids[@]}
-  start "x-$label" "$build/server/axis/netmc-axis" --node cost-x --axes x --clock realtime --domain "$domain" \
+  start "x-$label" "$netmc_axis" --node cost-x --axes x --clock realtime --domain "$domain" \
     --transport udp "$@"
-  start "y-$label" "$build/server/axis/netmc-axis" --node cost-y --axes y --clock realtime --domain "$domain" \
+  start "y-$label" "$netmc_axis" --node cost-y --axes y --clock realtime --domain "$domain" \
     --transport udp "$@"
-  start "server-$label" "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp "$@"
+  start "server-$label" "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp "$@"
   local port=""
   for _ in $(seq 100); do
     port=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/server-$label.log")
@@ -27,7 +25,7 @@ one_run() {  # one_run LABEL [--security DIR]: prints LABEL and the run's tau li
     sleep 0.1
   done
   local out
-  out=$("$build/client/netmc" run --server "127.0.0.1:$port" --clock realtime --sample-period 1ms --duration 10s \
+  out=$("$netmc" run --server "127.0.0.1:$port" --clock realtime --sample-period 1ms --duration 10s \
     --controller adrc+ilccc --iterations 1 --delay none 2>&1)
   echo "$label: $(grep -o -m1 'tau mean/p99/max [0-9./]* ms' <<<"$out" | head -1), $(grep -o -m1 'deadline misses [0-9]*' <<<"$out" | head -1) of 10001"
   # Stop this run's processes before the next one starts.

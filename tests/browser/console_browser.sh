@@ -13,12 +13,7 @@
 #      (Chromium shares these 2 cores with the loop: the loop's processes run SCHED_FIFO with
 #      --cpu-latency 0, as docs/benchmarks.md's 5 kHz figures; Chromium at nice 10).
 # Usage: console_browser.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$(cd "$1" && pwd)
-here=$(cd "$(dirname "$0")" && pwd)
-source "$here/../integration/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/../integration/lib.sh" "$@"
 python=/usr/bin/python3  # Debian's, with python3-selenium
 
 head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/token"
@@ -35,12 +30,12 @@ start_lab() {  # [--realtime-scheduling] [netmc-server flags...]
   fi
   local extra=("$@")
   for axis in x y; do
-    start "$axis-$RANDOM" "$build/server/axis/netmc-axis" --node con-$axis --axes $axis --clock realtime \
+    start "$axis-$RANDOM" "$netmc_axis" --node con-$axis --axes $axis --clock realtime \
       --command-limit 10 --position-window -1:1 --velocity-limit 10 --domain "$domain" --transport udp \
       "${scheduling[@]}"
   done
   : >"$tmp/server.log"
-  start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --http :0 --domain "$domain" \
+  start server "$netmc_server" --listen 127.0.0.1:0 --http :0 --domain "$domain" \
     --transport udp --token-file "$tmp/token" "${scheduling[@]}" "${extra[@]}"
   port=$(server_port 127.0.0.1)
   url=$(sed -n 's|.*console on \(https*://127.0.0.1:[0-9]*/\).*|\1|p' "$tmp/server.log")

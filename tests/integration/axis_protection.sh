@@ -6,15 +6,11 @@
 #   - the fault latches: the next job is refused, naming it;
 #   - the operator resets it on the axis's host (SIGUSR1); a job inside the window then runs.
 # Usage: axis_protection.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
 
-start x "$build/server/axis/netmc-axis" --node guard --axes x,y --position-window x=-0.001:0.055,y=0.03:0.07 \
+start x "$netmc_axis" --node guard --axes x,y --position-window x=-0.001:0.055,y=0.03:0.07 \
   --domain "$domain" --transport udp
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 port=$(server_port 127.0.0.1)
 for _ in $(seq 50); do grep -q "limits x:" "$tmp/x.log" && break; sleep 0.1; done
 grep -q "limits x: command 1, position \[-0.001, 0.055\] m; y: command 1, position \[0.03, 0.07\] m," "$tmp/x.log" ||

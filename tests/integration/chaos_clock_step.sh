@@ -16,12 +16,8 @@
 #     fails on x's silence). Then the next job runs to completion, its schedule kept across the
 #     disagreement by the measured offset.
 # Usage: chaos_clock_step.sh BUILD_DIR [STEP_SECONDS]   (skipped, 77, without libfaketime)
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
+source "$(dirname "$0")/lib.sh" "$@"
 step=${2:-2}
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
 faketime_lib=""
 for f in /usr/lib/*/faketime/libfaketimeMT.so.1 /usr/lib/faketime/libfaketimeMT.so.1; do
   [ -e "$f" ] && { faketime_lib=$f; break; }
@@ -41,11 +37,11 @@ cluster() {
   local base=$1 d=$2
   echo "+0" >"$tmp/x-clock"
   start "x-$base" env LD_PRELOAD="$faketime_lib" FAKETIME_TIMESTAMP_FILE="$tmp/x-clock" FAKETIME_CACHE_DURATION=1 \
-    FAKETIME_DONT_FAKE_MONOTONIC=1 "$build/server/axis/netmc-axis" --node step-x --axes x --clock realtime \
+    FAKETIME_DONT_FAKE_MONOTONIC=1 "$netmc_axis" --node step-x --axes x --clock realtime \
     --time-base "$base" --domain "$d" --transport udp --command-limit 5
-  start "y-$base" "$build/server/axis/netmc-axis" --node step-y --axes y --clock realtime --time-base "$base" \
+  start "y-$base" "$netmc_axis" --node step-y --axes y --clock realtime --time-base "$base" \
     --domain "$d" --transport udp --command-limit 5
-  start "server" "$build/server/service/netmc-server" --listen 127.0.0.1:0 --time-base "$base" --domain "$d" \
+  start "server" "$netmc_server" --listen 127.0.0.1:0 --time-base "$base" --domain "$d" \
     --transport udp
   port=$(server_port 127.0.0.1)
   for _ in $(seq 100); do

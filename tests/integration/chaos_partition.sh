@@ -16,17 +16,12 @@
 #   - lockstep: nothing acts without a setpoint, so no watchdog is involved: the axis waits;
 #   - the NEXT job on the same server and nodes runs to completion (after the last partition too).
 # Usage: chaos_partition.sh BUILD_DIR CLOCK SECONDS...   (root, nftables; else exit 77)
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$(cd "$1" && pwd)
+source "$(dirname "$0")/lib.sh" "$@"
 clock=$2
 shift 2
 lengths=("$@")
-here=$(dirname "$0")
-source "$here/lib.sh"
 source "$here/lab.sh"
 lab_keep_logs
-netmc=$build/client/netmc
 lab_init
 lab_need_nft
 for h in srv ax ay; do lab_host "$h"; done
@@ -34,10 +29,10 @@ axis_timeout_ms=1000
 silence_ms=500
 watchdog_ms=50
 
-lab_start server srv -- "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" \
+lab_start server srv -- "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" \
   --transport udp --interface eth0 --axis-timeout "$axis_timeout_ms" --axis-silence "$silence_ms"
 for a in x y; do
-  lab_start "$a" "a$a" -- "$build/server/axis/netmc-axis" --node "part-$a" --axes "$a" --clock "$clock" \
+  lab_start "$a" "a$a" -- "$netmc_axis" --node "part-$a" --axes "$a" --clock "$clock" \
     --domain "$domain" --transport udp --interface eth0 --watchdog "$watchdog_ms"
 done
 lab_wait_log server 'listening on' 10 || lab_fail "netmc-server did not start"

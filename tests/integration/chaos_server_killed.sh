@@ -7,13 +7,9 @@
 # with "server restarted during iteration N". Then once in realtime: the axes stop on their
 # watchdog, and the job queued behind the killed one runs after the restart.
 # Usage: chaos_server_killed.sh BUILD_DIR KILLS SEED   (loopback only)
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
+source "$(dirname "$0")/lib.sh" "$@"
 kills=${2:-3}
 RANDOM=${3:-26}
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
 state=$tmp/state
 now_ms() { date +%s%3N; }
 port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
@@ -24,7 +20,7 @@ server_pid=""
 # A server on the job store; waits until it listens.
 start_server() {  # CLOCK-independent
   generation=$((generation + 1))
-  start "server$generation" "$build/server/service/netmc-server" --listen "127.0.0.1:$port" --domain "$domain" \
+  start "server$generation" "$netmc_server" --listen "127.0.0.1:$port" --domain "$domain" \
     --transport udp --state-dir "$state" "$@"
   server_pid=${pids[-1]}
   for _ in $(seq 100); do
@@ -45,8 +41,8 @@ unfinished() {
 }
 
 # --- Lockstep: a stream of submissions and watchers, the server killed KILLS times. ---
-start x "$build/server/axis/netmc-axis" --node chaos-x --axes x --domain "$domain" --transport udp
-start y "$build/server/axis/netmc-axis" --node chaos-y --axes y --domain "$domain" --transport udp
+start x "$netmc_axis" --node chaos-x --axes x --domain "$domain" --transport udp
+start y "$netmc_axis" --node chaos-y --axes y --domain "$domain" --transport udp
 start_server
 iterations=(6 14 9 20 11 7 16 12 8 18 10 15 5 13 17 19)
 submitter() {
@@ -131,8 +127,8 @@ echo "events of the first jobs: $(sqlite3 "$state/jobs.sqlite" "SELECT count(*) 
 # --- Realtime: killed inside an iteration; the axes stop on their watchdog. ---
 kill -TERM "$server_pid"
 wait "$server_pid" 2>/dev/null || true
-start rx "$build/server/axis/netmc-axis" --node chaos-rx --axes u --clock realtime --domain "$domain" --transport udp
-start ry "$build/server/axis/netmc-axis" --node chaos-ry --axes v --clock realtime --domain "$domain" --transport udp
+start rx "$netmc_axis" --node chaos-rx --axes u --clock realtime --domain "$domain" --transport udp
+start ry "$netmc_axis" --node chaos-ry --axes v --clock realtime --domain "$domain" --transport udp
 rx_log=$tmp/rx.log
 start_server
 realtime=(--clock realtime --axes u,v --controller adrc+ilccc --duration 2s)

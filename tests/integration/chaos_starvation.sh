@@ -21,20 +21,16 @@
 # The stall must be counted: at least 30 deadline misses (60 periods went by without feedback
 # from x), or the job failed naming axis x.
 # Usage: chaos_starvation.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
 [ "$(nproc)" -ge 2 ] || { echo "skipped: needs 2 CPUs (server and axis on CPUs of their own)"; exit 77; }
 
-start x "$build/server/axis/netmc-axis" --node starve-x --axes x --clock realtime --domain "$domain" \
+start x "$netmc_axis" --node starve-x --axes x --clock realtime --domain "$domain" \
   --transport udp --cpus 1 --command-limit 5
 x_pid=${pids[-1]}
-start y "$build/server/axis/netmc-axis" --node starve-y --axes y --clock realtime --domain "$domain" \
+start y "$netmc_axis" --node starve-y --axes y --clock realtime --domain "$domain" \
   --transport udp --command-limit 5
 y_pid=${pids[-1]}
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp --cpus 0
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp --cpus 0
 server_pid=${pids[-1]}
 port=$(server_port 127.0.0.1)
 for _ in $(seq 100); do

@@ -7,13 +7,8 @@
 # entry function and none of netmc's code, and its table, read as the plain data netmc reads
 # first, states plugin ABI 1 and the prefix's netmc version.
 # Usage: component_plugin.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$(cd "$1" && pwd)
-source_dir=$(cd "$(dirname "$0")/../.." && pwd)
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/lib.sh" "$@"
 version=$(sed -n 's/^project(netmc VERSION \([0-9.]*\).*/\1/p' "$source_dir/CMakeLists.txt")
-netmc=$build/client/netmc  # for the netmc sim part at the end
 
 # build_example_component_plugin PREFIX WORK_DIR: the installed example, copied to WORK_DIR/src and
 # built in WORK_DIR/build; prints the plugin's path.
@@ -138,9 +133,9 @@ refused "a missing file" "no-such.so" "$netmc" sim -q --controller "plugin:$tmp/
 
 # netmc-server loads only the plugins its operator named (--allow-plugin); then a lockstep run
 # over DDS equals netmc sim byte for byte.
-start x "$build/server/axis/netmc-axis" --node cp-x --axes x --domain "$domain" --transport udp
-start y "$build/server/axis/netmc-axis" --node cp-y --axes y --domain "$domain" --transport udp
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+start x "$netmc_axis" --node cp-x --axes x --domain "$domain" --transport udp
+start y "$netmc_axis" --node cp-y --axes y --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
   --allow-plugin "$controller_plugin"
 port=$(server_port 127.0.0.1)
 refused "a plugin the server was not given" "not a file this server loads" \

@@ -9,15 +9,11 @@
 #     under a generous 50 % (eight 1 kHz axes and four loops on 2 cores of a virtual machine: one
 #     run gave 31 % on a job; the figures that matter are measured by bench/realtime_sweep.sh).
 # Usage: concurrent_jobs.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-axis_bin=$build/server/axis/netmc-axis
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
+axis_bin=$netmc_axis
 
 start node "$axis_bin" --node machines --axes m1.x,m1.y,m2.x,m2.y --domain "$domain" --transport udp
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 port=$(server_port 127.0.0.1)
 study=(--controller adrc+ilccc --iterations 6)
 

@@ -5,21 +5,17 @@
 # counters moved; GET /api/jobs/ID gives the same iterations as netmc watch --json; then the
 # hostile checks (console_hostile.py) with a job running.
 # Usage: console.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
 
 printf 'console-token-%s\n' "$RANDOM$RANDOM$RANDOM" >"$tmp/token"
 chmod 600 "$tmp/token"
 for axis in x y; do
   # A generous command limit: a loaded machine (the browser test beside) delays cycles by tens of ms.
-  start "$axis" "$build/server/axis/netmc-axis" --node con-$axis --axes $axis --clock realtime --domain "$domain" \
+  start "$axis" "$netmc_axis" --node con-$axis --axes $axis --clock realtime --domain "$domain" \
     --command-limit 10 --position-window -1:1 --velocity-limit 10 \
     --transport udp
 done
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --http :0 --domain "$domain" --transport udp \
+start server "$netmc_server" --listen 127.0.0.1:0 --http :0 --domain "$domain" --transport udp \
   --token-file "$tmp/token"
 port=$(server_port 127.0.0.1)
 http=$(sed -n 's|.*console on http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$tmp/server.log")

@@ -8,19 +8,16 @@
 #   - the monitor, allowed to read iteration logs, reads them;
 #   - a node with a valid certificate cannot host (write the feedback of) another node's axis.
 # Usage: dds_security.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/lib.sh" "$@"
 pki=$tmp/pki
 bash "$(dirname "$0")/../../scripts/make-lab-pki.sh" "$pki" --server netmc-server --node sec-x:x --node sec-y:y \
   --reader monitor >/dev/null
 secure=(--security "$pki" --domain "$domain" --transport udp)
 listener=$build/tests/integration/netmc_iteration_log_listener
 
-start x "$build/server/axis/netmc-axis" --node sec-x --axes x "${secure[@]}"
-start y "$build/server/axis/netmc-axis" --node sec-y --axes y "${secure[@]}"
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 "${secure[@]}"
+start x "$netmc_axis" --node sec-x --axes x "${secure[@]}"
+start y "$netmc_axis" --node sec-y --axes y "${secure[@]}"
+start server "$netmc_server" --listen 127.0.0.1:0 "${secure[@]}"
 port=$(server_port 127.0.0.1)
 grep -q "DDS Security as netmc-server" "$tmp/server.log"
 start monitor "$listener" --domain "$domain" --security "$pki" --name monitor --seconds 120
@@ -28,8 +25,8 @@ start outsider "$listener" --domain "$domain" --seconds 120
 sleep 1
 
 study=(--controller adrc,adrc+ilccc --iterations 3)
-"$build/client/netmc" run --server "127.0.0.1:$port" --quiet --json "$tmp/dds.json" "${study[@]}" >/dev/null
-"$build/client/netmc" sim --json "$tmp/sim.json" "${study[@]}" >/dev/null
+"$netmc" run --server "127.0.0.1:$port" --quiet --json "$tmp/dds.json" "${study[@]}" >/dev/null
+"$netmc" sim --json "$tmp/sim.json" "${study[@]}" >/dev/null
 same_json "$tmp/sim.json" "$tmp/dds.json" "lockstep over authenticated, encrypted DDS"
 sleep 1
 logs_monitor=$(grep -c '^[0-9a-f]* [0-9]* ' "$tmp/monitor.log" || true)
@@ -39,12 +36,12 @@ echo "iteration logs: the monitor (certificate, read permission) got $logs_monit
 [ "$logs_outsider" -eq 0 ] || { echo "FAIL: a participant without a certificate read iteration logs"; exit 1; }
 
 # A server without a certificate: the secure nodes are invisible to it.
-start rogue "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+start rogue "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
   --discovery-timeout 3000 --dds-name rogue-server
 for _ in $(seq 100); do grep -q "listening on" "$tmp/rogue.log" && break; sleep 0.1; done
 rogue_port=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/rogue.log")
 rogue_exit=0
-"$build/client/netmc" run --server "127.0.0.1:$rogue_port" --quiet --controller adrc --iterations 1 \
+"$netmc" run --server "127.0.0.1:$rogue_port" --quiet --controller adrc --iterations 1 \
   >"$tmp/rogue_run.txt" 2>&1 || rogue_exit=$?
 [ "$rogue_exit" -ne 0 ] && grep -q "no axis node for axis x was discovered" "$tmp/rogue_run.txt" ||
   { echo "FAIL: a server without a certificate reached the axes:"; cat "$tmp/rogue_run.txt"; exit 1; }
@@ -52,7 +49,7 @@ echo "a server without a certificate: $(grep -o 'no axis node for axis x was dis
 
 # A valid certificate without the right to write setpoints (the monitor's) cannot serve as a server.
 monitor_exit=0
-timeout 30 "$build/server/service/netmc-server" --listen 127.0.0.1:0 "${secure[@]}" --dds-name monitor \
+timeout 30 "$netmc_server" --listen 127.0.0.1:0 "${secure[@]}" --dds-name monitor \
   >"$tmp/impostor.log" 2>&1 || monitor_exit=$?
 [ "$monitor_exit" -ne 0 ] && [ "$monitor_exit" -ne 124 ] ||
   { echo "FAIL: the monitor's identity ran a server (exit $monitor_exit):"; cat "$tmp/impostor.log"; exit 1; }
@@ -60,7 +57,7 @@ echo "the monitor's certificate as a server: exit $monitor_exit, $(grep -m1 'err
 
 # A node's certificate covers its own axes' partitions only: sec-y cannot stand in for axis x.
 impostor_exit=0
-timeout 30 "$build/server/axis/netmc-axis" --node sec-y --axes x "${secure[@]}" >"$tmp/axis_impostor.log" 2>&1 ||
+timeout 30 "$netmc_axis" --node sec-y --axes x "${secure[@]}" >"$tmp/axis_impostor.log" 2>&1 ||
   impostor_exit=$?
 [ "$impostor_exit" -ne 0 ] && [ "$impostor_exit" -ne 124 ] ||
   { echo "FAIL: node sec-y served axis x (exit $impostor_exit)"; cat "$tmp/axis_impostor.log"; exit 1; }

@@ -7,13 +7,8 @@
 # domain, a plugin built for another ABI version (naming both), one without the entry symbol and
 # a missing file, each with one message and exit code 2.
 # Usage: drive_plugin.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$(cd "$1" && pwd)
-source_dir=$(cd "$(dirname "$0")/../.." && pwd)
-source "$(dirname "$0")/lib.sh"
-axis_bin=$build/server/axis/netmc-axis
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
+axis_bin=$netmc_axis
 
 cmake --install "$build" --prefix "$tmp/prefix" --component dev >"$tmp/install.log"
 cp -r "$tmp/prefix/share/netmc/examples/drive_plugin" "$tmp/plugin-src"
@@ -46,7 +41,7 @@ echo "refused, no limits: $(grep -o 'error: .*' "$tmp/refused.log" | cut -c1-160
 start node "$axis_bin" --node lab --axes x,y --clock realtime --domain "$domain" --transport udp \
   --drive "x=plugin:$plugin:a2=-20,b=20,position=0.055" --drive "y=plugin:$plugin:a2=-10,b=10,position=0.045" \
   --command-limit 5 --position-window 0:0.12 --velocity-limit 0.5
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 port=$(server_port 127.0.0.1)
 study=(--controller adrc --iterations 2 --trajectory circle:r=2mm,cx=50mm,cy=50mm,period=2s)
 "$netmc" run --server "127.0.0.1:$port" --clock realtime "${study[@]}" --quiet --json "$tmp/plugin.json" >/dev/null

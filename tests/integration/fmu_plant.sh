@@ -5,11 +5,7 @@
 # axis (no friction); a realtime job on two netmc-axis nodes hosting the FMU runs and learns; bad
 # FMUs are refused with one message each, and a node refuses an FMU plant without limits.
 # Usage: fmu_plant.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$(cd "$1" && pwd)
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
 fmus=$build/tests/fmu
 # The FMU's parameters default to seed001's X axis; its Y axis takes its own (a2, b, friction).
 fmu="fmu:$fmus/seed001_axis.fmu:velocity=v,y.a2=-10,y.b=10,y.coulomb=0.085"
@@ -62,15 +58,15 @@ refused "a missing variable" "nope" "$netmc" sim -q --plant "fmu:$fmus/seed001_a
 refused "a missing symbol" "fmi2DoStep" "$netmc" sim -q --plant "fmu:$fmus/no_do_step.fmu"
 refused "not a zip" "not_a_zip.fmu" "$netmc" sim -q --plant "fmu:$fmus/not_a_zip.fmu"
 refused "a node without limits" "needs a command limit" \
-  "$build/server/axis/netmc-axis" --node f-x --axes x --plant "$fmu" --clock realtime --domain "$domain"
+  "$netmc_axis" --node f-x --axes x --plant "$fmu" --clock realtime --domain "$domain"
 
 # A realtime job on two nodes hosting the FMU (the server opens no FMU: its plant is the nodes').
 limits=(--command-limit 1 --position-window -0.1:0.2 --velocity-limit 0.5)
 for axis in x y; do
-  start "$axis" "$build/server/axis/netmc-axis" --node fmu-$axis --axes $axis --clock realtime --plant "$fmu" \
+  start "$axis" "$netmc_axis" --node fmu-$axis --axes $axis --clock realtime --plant "$fmu" \
     "${limits[@]}" --domain "$domain" --transport udp
 done
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 port=$(server_port 127.0.0.1)
 "$netmc" run --server "127.0.0.1:$port" --clock realtime --controller adrc+ilccc --plant "$fmu" --iterations 5 \
   --json "$tmp/rt.json" >"$tmp/rt.txt"

@@ -4,18 +4,15 @@
 # attack is refused or contained (memory of answers never read, silent connections: issue 26),
 # the server's log says why, and it still serves afterwards.
 # Usage: hostile_management.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/lib.sh" "$@"
 
 token="$tmp/token"
 (umask 077 && head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$token")
 export NETMC_TOKEN_FILE=$token
 
-start x "$build/server/axis/netmc-axis" --node it-x --axes x --domain "$domain" --transport udp
-start y "$build/server/axis/netmc-axis" --node it-y --axes y --domain "$domain" --transport udp
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+start x "$netmc_axis" --node it-x --axes x --domain "$domain" --transport udp
+start y "$netmc_axis" --node it-y --axes y --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
   --max-connections 8 --token-file "$token"
 server_pid=${pids[-1]}
 port=$(server_port 127.0.0.1)
@@ -33,5 +30,5 @@ grep -q "cancelled: its client disconnected" "$tmp/server.log" ||
   { echo "FAIL: the server's log does not say why the job of the vanished client ended"; exit 1; }
 echo "server log: $(grep -m1 'its client disconnected' "$tmp/server.log")"
 # Still serving: a job after the attacks runs to the end.
-"$build/client/netmc" run --server "127.0.0.1:$port" --quiet --controller adrc --iterations 1 --duration 1s >/dev/null
+"$netmc" run --server "127.0.0.1:$port" --quiet --controller adrc --iterations 1 --duration 1s >/dev/null
 echo "the server still runs jobs after the attacks"

@@ -9,12 +9,7 @@
 # The example specs are one per preset and run. Then CPack's two .debs: netmc (programs, units,
 # examples; its dependencies Debian's runtime packages) and netmc-dev (libraries, headers), under /usr.
 # Usage: install_package.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$(cd "$1" && pwd)
-source_dir=$(cd "$(dirname "$0")/../.." && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+source "$(dirname "$0")/lib.sh" "$@"
 version=$(sed -n 's/^project(netmc VERSION \([0-9.]*\).*/\1/p' "$source_dir/CMakeLists.txt")
 prefix=$tmp/prefix
 

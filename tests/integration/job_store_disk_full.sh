@@ -4,15 +4,11 @@
 # goes on to its end, the store's integrity check passes, jobs are accepted again once there is
 # room; a server started on a read-only store says why and exits.
 # Usage: job_store_disk_full.sh BUILD_DIR   (root; loopback only)
-set -euo pipefail
+source "$(dirname "$0")/lib.sh" "$@"
 if [ -z "${NETMC_IN_MOUNT_NAMESPACE:-}" ]; then
   # Everything below (mounts, processes) lives in a mount namespace of its own.
   exec unshare --mount --propagation private env NETMC_IN_MOUNT_NAMESPACE=1 bash "$0" "$@"
 fi
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
 state=$tmp/state
 mkdir -p "$state"
 mount -t tmpfs -o size=3m tmpfs "$state"
@@ -25,9 +21,9 @@ integrity() {
   echo "integrity check $1: ok"
 }
 
-start x "$build/server/axis/netmc-axis" --node full-x --axes x --domain "$domain" --transport udp
-start y "$build/server/axis/netmc-axis" --node full-y --axes y --domain "$domain" --transport udp
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+start x "$netmc_axis" --node full-x --axes x --domain "$domain" --transport udp
+start y "$netmc_axis" --node full-y --axes y --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
   --state-dir "$state"
 server_pid=${pids[-1]}
 port=$(server_port 127.0.0.1)
@@ -68,7 +64,7 @@ mount -o remount,ro "$state"
 integrity "on the read-only store"
 # A server started on it says why and exits 2.
 code=0
-"$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp --state-dir "$state" \
+"$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp --state-dir "$state" \
   >"$tmp/readonly-start.txt" 2>&1 || code=$?
 tail -1 "$tmp/readonly-start.txt"
 [ "$code" -eq 2 ] && grep -q "state-dir: .*jobs.sqlite" "$tmp/readonly-start.txt" ||

@@ -6,9 +6,7 @@
 # with other permissions, a management certificate for other hosts, or a CA certificate without
 # its key is refused with a message saying why, and nothing is written.
 # Usage: lab_pki_rerun.sh (needs openssl only)
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/lib.sh" "$@"
 pki_script=$(cd "$(dirname "$0")/../.." && pwd)/scripts/make-lab-pki.sh
 lab=$tmp/lab
 

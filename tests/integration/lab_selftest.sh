@@ -5,10 +5,7 @@
 # assert_loopback_only accepts loopback binds and rejects wildcard, TCP-wildcard and multicast binds.
 # Needs root, iproute2, nftables, time namespaces and python3; exits 77 (skipped) otherwise.
 # Usage: lab_selftest.sh
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-here=$(dirname "$0")
-source "$here/lib.sh"
+source "$(dirname "$0")/lib.sh" "$@"
 source "$here/lab.sh"
 
 command -v python3 >/dev/null || { echo "skipped: python3 is not installed"; exit 77; }

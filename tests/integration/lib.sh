@@ -1,5 +1,19 @@
-# Shared by the multi-process tests: a scratch directory, background processes stopped on exit,
-# and the management port netmc-server reports once it listens. Source it after `set -e`.
+# The one harness of the multi-process tests. Every script starts with
+#   source "$(dirname "$0")/lib.sh" "$@"
+# which sets the shell options and the failure trap, reads the build directory (the first
+# argument, as netmc_add_script_test passes it) and names the programs: $netmc, $netmc_server,
+# $netmc_axis; $source_dir is the repository, $here this folder. Then: a scratch directory $tmp,
+# background processes stopped on exit (start NAME COMMAND...; lab.sh's lab_start in a
+# namespaced host), and the management port netmc-server reports once it listens.
+set -euo pipefail
+trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
+[ $# -ge 1 ] && [ -d "$1" ] || { echo "usage: $0 BUILD_DIR [arguments...]" >&2; exit 2; }
+build=$(cd "$1" && pwd)
+here=$(cd "$(dirname "$0")" && pwd)
+source_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+netmc=$build/client/netmc
+netmc_server=$build/server/service/netmc-server
+netmc_axis=$build/server/axis/netmc-axis
 
 tmp=$(mktemp -d)
 pids=()

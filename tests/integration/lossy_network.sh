@@ -28,16 +28,11 @@
 #    delays are printed per loss level.
 # Needs root, iproute2 and nftables; exits 77 (skipped) otherwise.
 # Set NETMC_KEEP_LOGS=DIR to keep all logs. Usage: lossy_network.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$(cd "$1" && pwd)
-here=$(dirname "$0")
-source "$here/lib.sh"
+source "$(dirname "$0")/lib.sh" "$@"
 source "$here/lab.sh"
 lab_keep_logs
-server_bin=$build/server/service/netmc-server
-axis_bin=$build/server/axis/netmc-axis
-netmc=$build/client/netmc
+server_bin=$netmc_server
+axis_bin=$netmc_axis
 lab_init
 lab_need_nft
 t_start=$EPOCHREALTIME

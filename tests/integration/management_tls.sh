@@ -6,11 +6,7 @@
 # log names it; a client trusting another CA refuses the server. A second server asks for client
 # certificates too (--tls-client-ca): it serves the lab's operator certificate and no other.
 # Usage: management_tls.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
 root=$(cd "$(dirname "$0")/../.." && pwd)
 
 bash "$root/scripts/make-lab-pki.sh" "$tmp/pki" --server tls-server --management 127.0.0.1 \
@@ -19,9 +15,9 @@ bash "$root/scripts/make-lab-pki.sh" "$tmp/other" --server other --management 12
   --management-client operator >/dev/null
 head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/token"
 export NETMC_TOKEN_FILE=$tmp/token
-start x "$build/server/axis/netmc-axis" --node tx --axes x --domain "$domain" --transport udp
-start y "$build/server/axis/netmc-axis" --node ty --axes y --domain "$domain" --transport udp
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+start x "$netmc_axis" --node tx --axes x --domain "$domain" --transport udp
+start y "$netmc_axis" --node ty --axes y --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
   --token-file "$tmp/token" --tls-cert "$tmp/pki/management.pem" --tls-key "$tmp/pki/management.key"
 port=$(server_port 127.0.0.1)
 grep -q "($(printf 'TLS 1.3, certificate /CN=netmc management')" "$tmp/server.log" ||
@@ -54,7 +50,7 @@ NETMC_TLS_CA=$tmp/other/ca.pem "$netmc" status "${server[@]}" >"$tmp/stranger.tx
 echo "client trusting another CA: $(cat "$tmp/stranger.txt")"
 
 # Client certificates: only the lab's operator is served.
-start server2 "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+start server2 "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
   --token-file "$tmp/token" --tls-cert "$tmp/pki/management.pem" --tls-key "$tmp/pki/management.key" \
   --tls-client-ca "$tmp/pki/ca.pem"
 port2=""

@@ -5,13 +5,10 @@
 # a third job refused because its axes are held by the other server. While they run, no netmc
 # socket may be bound to anything but loopback (ss).
 # Usage: many_nodes.sh BUILD_DIR
-set -euo pipefail
-build=$(cd "$1" && pwd)
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/lib.sh" "$@"
 source "$(dirname "$0")/lab.sh"
-axis_bin=$build/server/axis/netmc-axis
-server_bin=$build/server/service/netmc-server
-netmc=$build/client/netmc
+axis_bin=$netmc_axis
+server_bin=$netmc_server
 
 for i in $(seq 0 19); do
   machine=p$((i / 2))

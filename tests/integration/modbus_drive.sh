@@ -13,15 +13,12 @@
 #   4. the emulator killed mid-job: the axis trips naming the cause; restarted and reset, the next
 #      job runs. 5. an emulator answering Modbus exceptions: the axis trips naming the exception.
 # Usage: modbus_drive.sh BUILD_DIR
-set -euo pipefail
-build=$(cd "$1" && pwd)
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/lib.sh" "$@"
 source "$(dirname "$0")/lab.sh"
 lab_keep_logs
 emulator=$build/server/drive/emulator/netmc-drive-emulator
-axis_bin=$build/server/axis/netmc-axis
-server_bin=$build/server/service/netmc-server
-netmc=$build/client/netmc
+axis_bin=$netmc_axis
+server_bin=$netmc_server
 
 lab_init
 lab_host rig

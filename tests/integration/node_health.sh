@@ -4,19 +4,16 @@
 # (status every 0.5 s, forgotten after 2.5 s of silence); restarted, it is back and the first
 # job after the restart works.
 # Usage: node_health.sh BUILD_DIR lockstep|realtime
-set -euo pipefail
-build=$(cd "$1" && pwd)
+source "$(dirname "$0")/lib.sh" "$@"
 clock=${2:-lockstep}
-source "$(dirname "$0")/lib.sh"
 source "$(dirname "$0")/lab.sh"
-axis_bin=$build/server/axis/netmc-axis
-netmc=$build/client/netmc
+axis_bin=$netmc_axis
 node() { "$axis_bin" --clock "$clock" --domain "$domain" --transport udp "$@"; }
 bound_ms=3500   # docs/operations/distributed-runs.md: a dead node leaves the list within 3.5 s
 
 lab_start x - -- "$axis_bin" --clock "$clock" --domain "$domain" --transport udp --node hx --axes x
 lab_start y - -- "$axis_bin" --clock "$clock" --domain "$domain" --transport udp --node hy --axes y
-lab_start server - -- "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+lab_start server - -- "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 lab_wait_log server 'listening on' 10
 port=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$tmp/server.log")
 lab_wait_log x 'serving' 10

@@ -6,22 +6,18 @@
 # and must stay within 16 MiB of what it was after a short job (docs/operations/memory-bounds.md).
 # The job is cancelled and the next short job completes.
 # Usage: node_memory.sh BUILD_DIR   (loopback only)
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
 rss_kib() { awk '/^VmRSS/ { print $2 }' "/proc/$1/status"; }
 head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/token"
 export NETMC_TOKEN_FILE=$tmp/token  # the admin's: cancels the job it did not submit on this connection
 
 node_pids=()
 for axis in x y; do
-  start "$axis" "$build/server/axis/netmc-axis" --node mem-$axis --axes $axis --clock realtime --domain "$domain" \
+  start "$axis" "$netmc_axis" --node mem-$axis --axes $axis --clock realtime --domain "$domain" \
     --transport udp
   node_pids+=("${pids[-1]}")
 done
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
   --admin-token-file "$tmp/token"
 port=$(server_port 127.0.0.1)
 server=(--server "127.0.0.1:$port")

@@ -6,18 +6,14 @@
 # a job from `netmc submit` runs on without its client, and `netmc watch` follows it from other
 # connections, joining mid-run or after its end, with the result `netmc sim` gives.
 # Usage: operator_jobs.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
 now_ms() { date +%s%3N; }
 
 head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/token"
 head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/admin"
-start x "$build/server/axis/netmc-axis" --node ox --axes x --domain "$domain" --transport udp
-start y "$build/server/axis/netmc-axis" --node oy --axes y --domain "$domain" --transport udp
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+start x "$netmc_axis" --node ox --axes x --domain "$domain" --transport udp
+start y "$netmc_axis" --node oy --axes y --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
   --token-file "$tmp/token" --admin-token-file "$tmp/admin"
 port=$(server_port 127.0.0.1)
 export NETMC_TOKEN_FILE=$tmp/token

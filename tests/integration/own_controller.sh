@@ -5,11 +5,7 @@
 # gains flag), run from a spec file with per-axis gains, and give the same JSON, byte for byte,
 # over DDS in lockstep as netmc sim in-process.
 # Usage: own_controller.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
 
 "$netmc" sim --help >"$tmp/help.txt"
 grep -q -- "--test-pd" "$tmp/help.txt" || { echo "FAIL: --test-pd is not in netmc sim --help"; exit 1; }
@@ -41,9 +37,9 @@ grep -q "controller.gains.test_pd.ki: unknown key (expected one of: kp, kd)" "$t
   { echo "FAIL: unexpected message:"; cat "$tmp/bad.txt"; exit 1; }
 echo "an unknown gain is refused: $(cat "$tmp/bad.txt")"
 
-start x "$build/server/axis/netmc-axis" --node own-x --axes x --domain "$domain" --transport udp
-start y "$build/server/axis/netmc-axis" --node own-y --axes y --domain "$domain" --transport udp
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+start x "$netmc_axis" --node own-x --axes x --domain "$domain" --transport udp
+start y "$netmc_axis" --node own-y --axes y --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 port=$(server_port 127.0.0.1)
 "$netmc" run --server "127.0.0.1:$port" --quiet --spec "$tmp/spec.json" --json "$tmp/dds.json" >/dev/null
 same_json "$tmp/sim.json" "$tmp/dds.json" "the test suite's own controller, lockstep over DDS,"

@@ -3,19 +3,16 @@
 # the downlink: ADRC+ILCCC must still cut e_sum by at least 80 % from its first iteration (plain
 # ADRC) within 5 iterations. Prints the measured loop-delay statistics.
 # Usage: realtime_ilc.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/lib.sh" "$@"
 
 for axis in x y; do
-  start "$axis" "$build/server/axis/netmc-axis" --node rt-$axis --axes $axis --clock realtime \
+  start "$axis" "$netmc_axis" --node rt-$axis --axes $axis --clock realtime \
     --domain "$domain" --transport udp
 done
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 port=$(server_port 127.0.0.1)
 
-"$build/client/netmc" run --server "127.0.0.1:$port" --clock realtime --controller adrc+ilccc \
+"$netmc" run --server "127.0.0.1:$port" --clock realtime --controller adrc+ilccc \
   --iterations 5 --curve --json "$tmp/rt.json"
 sums=$(sed -n 's/.*"e_sum_m": \([0-9.eE+-]*\).*/\1/p' "$tmp/rt.json")
 first=$(echo "$sums" | head -n 1)

@@ -2,11 +2,7 @@
 # Every preset, and spec files written by netmc 0.1 (typed gains messages), give the JSON results
 # netmc 0.1.0 gave, byte for byte: tests/data/netmc-0.1/results.sha256 holds its digests.
 # Usage: results_unchanged.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
 data=$(cd "$(dirname "$0")/../data/netmc-0.1" && pwd)
 
 presets=$("$netmc" sim --list-presets | awk '{print $1}')

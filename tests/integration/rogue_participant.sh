@@ -14,12 +14,8 @@
 #   3. hijack, realtime (1 ms, 1 s): the job completes with no stale setpoint and an e_max
 #      within 0.67-1.5 times netmc sim's (a loaded 2-core machine stretches the real delays).
 # Usage: rogue_participant.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
-axis_bin=$build/server/axis/netmc-axis
+source "$(dirname "$0")/lib.sh" "$@"
+axis_bin=$netmc_axis
 rogue=$build/tests/integration/netmc_rogue_participant
 dds=(--domain "$domain" --transport udp)
 
@@ -29,7 +25,7 @@ start hx "$axis_bin" --node hx --axes x --server-name netmc-server "${dds[@]}"
 start hy "$axis_bin" --node hy --axes y --server-name netmc-server "${dds[@]}"
 start rx "$axis_bin" --node rx --axes rx --clock realtime "${dds[@]}"
 start ry "$axis_bin" --node ry --axes ry --clock realtime "${dds[@]}"
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 "${dds[@]}"
+start server "$netmc_server" --listen 127.0.0.1:0 "${dds[@]}"
 port=$(server_port 127.0.0.1)
 for node in gz gw hx hy rx ry; do
   for _ in $(seq 100); do grep -q serving "$tmp/$node.log" && break; sleep 0.1; done

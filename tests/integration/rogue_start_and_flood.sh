@@ -14,12 +14,8 @@
 #      (VmRSS) grows by less than 64 MiB. Then the same with 300 k random END_ITERATION and
 #      END_JOB job controls.
 # Usage: rogue_start_and_flood.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
-axis_bin=$build/server/axis/netmc-axis
+source "$(dirname "$0")/lib.sh" "$@"
+axis_bin=$netmc_axis
 rogue=$build/tests/integration/netmc_rogue_participant
 dds=(--domain "$domain" --transport udp)
 
@@ -29,7 +25,7 @@ start pair "$axis_bin" --node pair --axes px,py,pz --clock realtime --command-li
 pair_pid=${pids[-1]}
 start lxy "$axis_bin" --node lxy --axes x,y "${dds[@]}"
 lxy_pid=${pids[-1]}
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 "${dds[@]}"
+start server "$netmc_server" --listen 127.0.0.1:0 "${dds[@]}"
 port=$(server_port 127.0.0.1)
 for node in pair lxy; do
   for _ in $(seq 100); do grep -q serving "$tmp/$node.log" && break; sleep 0.1; done

@@ -20,16 +20,11 @@
 #      statistics must agree with (b) (tolerances below).
 # Needs root, iproute2 and time namespaces (unshare --time); exits 77 (skipped) otherwise.
 # Set NETMC_KEEP_LOGS=DIR to keep all logs. Usage: separate_clocks.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$(cd "$1" && pwd)
-here=$(dirname "$0")
-source "$here/lib.sh"
+source "$(dirname "$0")/lib.sh" "$@"
 source "$here/lab.sh"
 lab_keep_logs
-server_bin=$build/server/service/netmc-server
-axis_bin=$build/server/axis/netmc-axis
-netmc=$build/client/netmc
+server_bin=$netmc_server
+axis_bin=$netmc_axis
 lab_init
 lab_need_timens
 t_start=$EPOCHREALTIME

@@ -6,32 +6,29 @@
 # Discovery Server (fast-discovery-server from fastdds-tools) with no multicast
 # route at all.
 # Usage: separate_hosts.sh BUILD_DIR [extra study flags...]
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$(cd "$1" && pwd)
+source "$(dirname "$0")/lib.sh" "$@"
 shift
-source "$(dirname "$0")/lib.sh"
 source "$(dirname "$0")/lab.sh"
 lab_init
 for h in srv ax ay cl ds; do lab_host "$h"; done
 srv=$(lab_addr srv)
 study=("$@")
-"$build/client/netmc" sim --json "$tmp/sim.json" "${study[@]}" >/dev/null
+"$netmc" sim --json "$tmp/sim.json" "${study[@]}" >/dev/null
 
 # run_study TAG DDS_FLAGS...: axis nodes, server, and the study from the client host.
 run_study() {
   local tag=$1 port
   shift
-  lab_start "x$tag" ax -- "$build/server/axis/netmc-axis" --node host-x --axes x --transport udp --interface eth0 "$@"
-  lab_start "y$tag" ay -- "$build/server/axis/netmc-axis" --node host-y --axes y --transport udp --interface eth0 "$@"
-  lab_start "server$tag" srv -- "$build/server/service/netmc-server" --listen "$srv:0" --transport udp \
+  lab_start "x$tag" ax -- "$netmc_axis" --node host-x --axes x --transport udp --interface eth0 "$@"
+  lab_start "y$tag" ay -- "$netmc_axis" --node host-y --axes y --transport udp --interface eth0 "$@"
+  lab_start "server$tag" srv -- "$netmc_server" --listen "$srv:0" --transport udp \
     --interface eth0 "$@"
   lab_wait_log "server$tag" 'listening on' 10
   lab_wait_log "x$tag" 'serving' 10
   lab_wait_log "y$tag" 'serving' 10
   port=$(sed -n "s/.*listening on $srv:\([0-9]*\).*/\1/p" "$tmp/server$tag.log")
-  lab_exec cl -- "$build/client/netmc" nodes --server "$srv:$port"
-  lab_exec cl -- "$build/client/netmc" run --server "$srv:$port" --quiet --json "$tmp/dds$tag.json" "${study[@]}" \
+  lab_exec cl -- "$netmc" nodes --server "$srv:$port"
+  lab_exec cl -- "$netmc" run --server "$srv:$port" --quiet --json "$tmp/dds$tag.json" "${study[@]}" \
     >"$tmp/dds$tag.txt" 2>&1 || { cat "$tmp/dds$tag.txt"; return 1; }
   if cmp -s "$tmp/dds$tag.json" "$tmp/sim.json"; then
     echo "separate hosts ($tag): identical JSON to netmc sim"

@@ -5,16 +5,12 @@
 # server's RSS where it was; jobs waiting in the queue may hold at most 256 MiB of specs, and a
 # submit beyond is refused with the reason.
 # Usage: server_memory.sh BUILD_DIR   (loopback only)
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
 rss_mib() { awk '/^VmRSS/ { printf "%d", $2 / 1024 }' "/proc/$1/status"; }
 
-start x "$build/server/axis/netmc-axis" --node mem-x --axes x --domain "$domain" --transport udp
-start y "$build/server/axis/netmc-axis" --node mem-y --axes y --domain "$domain" --transport udp
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+start x "$netmc_axis" --node mem-x --axes x --domain "$domain" --transport udp
+start y "$netmc_axis" --node mem-y --axes y --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 server_pid=${pids[-1]}
 port=$(server_port 127.0.0.1)
 server=(--server "127.0.0.1:$port")

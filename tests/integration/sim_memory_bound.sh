@@ -4,11 +4,7 @@
 # std::bad_alloc at 4.5 GB), and a long iteration (1.2e6 cycles, past DelayStatistics' exact
 # threshold) completes under an address-space cap with a bounded peak RSS.
 # Usage: sim_memory_bound.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
+source "$(dirname "$0")/lib.sh" "$@"
 
 rc=0
 timeout 30 "$netmc" sim -q --duration 200000s >"$tmp/long.txt" 2>&1 || rc=$?

@@ -5,21 +5,18 @@
 # 1 s per run, must give the same JSON, byte for byte, as `netmc sim` in-process: metrics and the
 # controllers' final estimates.
 # Usage: single_axis_lockstep.sh BUILD_DIR
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
+source "$(dirname "$0")/lib.sh" "$@"
 shift
-source "$(dirname "$0")/lib.sh"
 
-start x "$build/server/axis/netmc-axis" --node it-x --axes x --plant hiwin --domain "$domain" --transport udp
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+start x "$netmc_axis" --node it-x --axes x --plant hiwin --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 port=$(server_port 127.0.0.1)
 
 SECONDS=0
-"$build/client/netmc" run --server "127.0.0.1:$port" --quiet --preset thesis-dead-zone --duration 1s \
+"$netmc" run --server "127.0.0.1:$port" --quiet --preset thesis-dead-zone --duration 1s \
   --json "$tmp/dds.json" >"$tmp/dds.txt"
 wall=$SECONDS
-"$build/client/netmc" sim --preset thesis-dead-zone --duration 1s --json "$tmp/sim.json" >"$tmp/sim.txt"
+"$netmc" sim --preset thesis-dead-zone --duration 1s --json "$tmp/sim.json" >"$tmp/sim.txt"
 # One axis, and the estimates of C3 (six parameters and d_c) in the results.
 axes=$(awk '/"tracking_rms_m": \[/ {inside = 1; next} inside && /\]/ {print n; exit} inside {n++}' "$tmp/sim.json")
 [ "$axes" = 1 ] || { echo "FAIL: expected metrics of 1 axis, got $axes"; exit 1; }

@@ -5,25 +5,21 @@
 # descriptors of every process, the store's size. Passes when no job failed and the RSS of the
 # server and of each node at the end is within 5 % of the first minute's (after warm-up).
 # Usage: soak.sh BUILD_DIR DURATION_S [REPORT_FILE]   (loopback only; label soak, not in CI)
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
+source "$(dirname "$0")/lib.sh" "$@"
 duration_s=$2
 report=${3:-/dev/null}
-source "$(dirname "$0")/lib.sh"
-netmc=$build/client/netmc
 now_s() { date +%s; }
 # As a lab deploys realtime: the loops under SCHED_FIFO with their memory locked (root here);
 # the sweep client and everything else on the host under the normal scheduler.
 rt=(--rt-priority 80 --lock-memory)
 
-start x "$build/server/axis/netmc-axis" --node soak-x --axes x --clock realtime --domain "$domain" --transport udp \
+start x "$netmc_axis" --node soak-x --axes x --clock realtime --domain "$domain" --transport udp \
   --command-limit 5 "${rt[@]}"
 x_pid=${pids[-1]}
-start y "$build/server/axis/netmc-axis" --node soak-y --axes y --clock realtime --domain "$domain" --transport udp \
+start y "$netmc_axis" --node soak-y --axes y --clock realtime --domain "$domain" --transport udp \
   --command-limit 5 "${rt[@]}"
 y_pid=${pids[-1]}
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp \
   --state-dir "$tmp/state" "${rt[@]}"
 server_pid=${pids[-1]}
 port=$(server_port 127.0.0.1)

@@ -7,23 +7,20 @@
 # unsaturated: their first cycles command up to 27 V, beyond the stage's +-10 V that the nodes'
 # simulated drives take by default, so the nodes are told --command-limit 40.
 # Usage: three_axis_lockstep.sh BUILD_DIR [extra study flags...]
-set -euo pipefail
-trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
-build=$1
+source "$(dirname "$0")/lib.sh" "$@"
 shift
-source "$(dirname "$0")/lib.sh"
 
-start xy "$build/server/axis/netmc-axis" --node it-xy --axes x,y --plant linmotor --command-limit 40 \
+start xy "$netmc_axis" --node it-xy --axes x,y --plant linmotor --command-limit 40 \
   --domain "$domain" --transport udp
-start z "$build/server/axis/netmc-axis" --node it-z --axes z --plant linmotor --command-limit 40 \
+start z "$netmc_axis" --node it-z --axes z --plant linmotor --command-limit 40 \
   --domain "$domain" --transport udp
-start server "$build/server/service/netmc-server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
+start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport udp
 port=$(server_port 127.0.0.1)
 
 SECONDS=0
-"$build/client/netmc" run --server "127.0.0.1:$port" --quiet --preset thesis-spatial --duration 4s --json "$tmp/dds.json" "$@" >"$tmp/dds.txt"
+"$netmc" run --server "127.0.0.1:$port" --quiet --preset thesis-spatial --duration 4s --json "$tmp/dds.json" "$@" >"$tmp/dds.txt"
 wall=$SECONDS
-"$build/client/netmc" sim --preset thesis-spatial --duration 4s --json "$tmp/sim.json" "$@" >"$tmp/sim.txt"
+"$netmc" sim --preset thesis-spatial --duration 4s --json "$tmp/sim.json" "$@" >"$tmp/sim.txt"
 cat "$tmp/dds.txt"
 # Per-axis metrics of the first run: one value per axis.
 axes=$(awk '/"tracking_rms_m": \[/ {inside = 1; next} inside && /\]/ {print n; exit} inside {n++}' "$tmp/sim.json")
