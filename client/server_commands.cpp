@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "client/realtime_study_length.hpp"
 #include "client/study_flags.hpp"
 #include "client/study_report.hpp"
 #include "client/verbosity.hpp"
@@ -149,6 +150,9 @@ std::function<int()> add_run_command(CLI::App& app) {
     const StudyPlan plan = plan_from_flags(flags->study);
     if (!flags->study.json_path.empty()) check_output_path(flags->study.json_path, "--json");
     std::ostream& report = is_standard_output(flags->study.json_path) ? std::cerr : std::cout;
+    if (const auto notice = realtime_study_notice(plan.jobs); notice && !verbosity().quiet) {
+      std::cerr << *notice << '\n';
+    }
     management::ManagementClient client(flags->server, kServerConnectTimeout);
     std::vector<RunOutcome> outcomes;
     std::uint64_t request_id = 1;
