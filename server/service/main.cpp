@@ -1,6 +1,7 @@
 // netmc-server: the central controller. Discovers axis nodes over DDS, runs submitted jobs on
-// them (lockstep, the same job runner as `netmc sim`) and serves the management endpoint
-// (Boost.Asio TCP, length-prefixed protobuf) for `netmc run` and `netmc nodes`.
+// them (lockstep with the same job runner as `netmc sim`, or realtime on the wall clock) and
+// serves the management endpoint (Boost.Asio TCP or TLS, length-prefixed protobuf: run, submit,
+// watch, status, jobs, cancel, nodes, reset) and the lab console. See docs/architecture.md.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
