@@ -1,168 +1,27 @@
 #include "server/dds/dds_context.hpp"
 
-#include <arpa/inet.h>
-#include <ifaddrs.h>
-#include <netinet/in.h>
-
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
-#include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/common/InstanceHandle.h>
-#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
-#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
-#include <fastrtps/utils/IPLocator.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
-#include <set>
 #include <thread>
 
+#include "server/dds/dds_locators.hpp"
+#include "server/dds/dds_security_settings.hpp"
+
 namespace netmc::dds {
-namespace {
 
 using namespace eprosima::fastdds::dds;
 using eprosima::fastrtps::Duration_t;
-using eprosima::fastrtps::rtps::IPLocator;
-using eprosima::fastrtps::rtps::Locator_t;
-
-// Repair of a lost reliable sample: the writer announces what it has every 2 ms (Fast DDS's
-// default is 3 s), answers a NACK at once, and the reader NACKs without delay. One lost
-// sample of a lockstep exchange then costs about one heartbeat period.
-template <typename Qos>
-void fast_repair(Qos& qos);
-
-template <>
-void fast_repair(DataWriterQos& qos) {
-  auto& times = qos.reliable_writer_qos().times;
-  times.heartbeatPeriod = Duration_t(0, 2'000'000);
-  times.initialHeartbeatDelay = Duration_t(0, 1'000'000);
-  times.nackResponseDelay = Duration_t(0, 0);
-  times.nackSupressionDuration = Duration_t(0, 0);
-}
-
-template <>
-void fast_repair(DataReaderQos& qos) {
-  auto& times = qos.reliable_reader_qos().times;
-  times.heartbeatResponseDelay = Duration_t(0, 0);
-  times.initialAcknackDelay = Duration_t(0, 1'000'000);
-}
-
-template <typename Qos>
-void apply(Qos& qos, Delivery delivery) {
-  qos.endpoint().history_memory_policy =
-      eprosima::fastrtps::rtps::DYNAMIC_REUSABLE_MEMORY_MODE;
-  qos.durability().kind = VOLATILE_DURABILITY_QOS;
-  qos.history().kind = KEEP_LAST_HISTORY_QOS;
-  int depth = 64;
-  switch (delivery) {
-    case Delivery::stream:
-      qos.reliability().kind = BEST_EFFORT_RELIABILITY_QOS;
-      depth = 8;
-      break;
-    case Delivery::exchange:
-    case Delivery::control:
-      // Keep-last rather than keep-all: a writer never blocks, and lockstep has at most one
-      // sample per axis in flight.
-      qos.reliability().kind = RELIABLE_RELIABILITY_QOS;
-      fast_repair(qos);
-      break;
-    case Delivery::log:
-      qos.reliability().kind = RELIABLE_RELIABILITY_QOS;
-      qos.durability().kind = TRANSIENT_LOCAL_DURABILITY_QOS;
-      break;
-    case Delivery::status:
-      qos.reliability().kind = RELIABLE_RELIABILITY_QOS;
-      qos.durability().kind = TRANSIENT_LOCAL_DURABILITY_QOS;
-      qos.liveliness().kind = AUTOMATIC_LIVELINESS_QOS;
-      fast_repair(qos);
-      depth = 1;
-      break;
-  }
-  qos.history().depth = depth;
-  // Fast DDS's default is 10 instances per endpoint: 10 nodes, 10 jobs' logs.
-  qos.resource_limits().max_instances = kMaxInstances;
-  qos.resource_limits().max_samples_per_instance = depth;
-  qos.resource_limits().max_samples = 0;  // unlimited overall; bounded per instance
-}
-
-bool is_ipv4(const std::string& text) {
-  in_addr address{};
-  return ::inet_pton(AF_INET, text.c_str(), &address) == 1;
-}
-
-std::vector<std::string> interface_addresses(const std::string& name) {
-  std::vector<std::string> out;
-  ifaddrs* list = nullptr;
-  if (::getifaddrs(&list) != 0) return out;
-  for (ifaddrs* it = list; it; it = it->ifa_next) {
-    if (!it->ifa_addr || it->ifa_addr->sa_family != AF_INET || name != it->ifa_name) continue;
-    char text[INET_ADDRSTRLEN] = {};
-    const auto* in = reinterpret_cast<const sockaddr_in*>(it->ifa_addr);
-    if (::inet_ntop(AF_INET, &in->sin_addr, text, sizeof text)) out.emplace_back(text);
-  }
-  ::freeifaddrs(list);
-  return out;
-}
-
-Locator_t udp_locator(const std::string& address, std::uint32_t port) {
-  Locator_t locator;
-  locator.kind = LOCATOR_KIND_UDPv4;
-  IPLocator::setIPv4(locator, address);
-  locator.port = port;
-  return locator;
-}
-
-eprosima::fastdds::rtps::RemoteServerAttributes discovery_server(const std::string& text, int id) {
-  const auto colon = text.rfind(':');
-  std::string host = colon == std::string::npos ? "" : text.substr(0, colon);
-  if (host == "localhost") host = "127.0.0.1";
-  int port = -1;
-  if (colon != std::string::npos && colon + 1 < text.size() && text.size() - colon <= 6 &&
-      std::all_of(text.begin() + static_cast<std::ptrdiff_t>(colon) + 1, text.end(),
-                  [](char c) { return c >= '0' && c <= '9'; })) {
-    port = std::stoi(text.substr(colon + 1));
-  }
-  if (!is_ipv4(host) || port < 1 || port > 65535) {
-    throw std::invalid_argument("--discovery-server: expected IPV4:PORT[,IPV4:PORT...], got '" + text + "'");
-  }
-  eprosima::fastdds::rtps::RemoteServerAttributes server;
-  eprosima::fastdds::rtps::get_server_client_default_guidPrefix(id, server.guidPrefix);
-  server.metatrafficUnicastLocatorList.push_back(udp_locator(host, static_cast<std::uint32_t>(port)));
-  return server;
-}
-
-}  // namespace
-
-std::vector<std::string> resolve_interfaces(const std::vector<std::string>& interfaces) {
-  if (interfaces.empty()) return {"127.0.0.1"};
-  std::vector<std::string> out;
-  for (const auto& entry : interfaces) {
-    if (entry == "any") {
-      if (interfaces.size() != 1) throw std::invalid_argument("--interface: 'any' stands alone");
-      return {"any"};
-    }
-    if (entry.size() > 64) throw std::invalid_argument("--interface: entry longer than 64 characters");
-    if (is_ipv4(entry)) {
-      out.push_back(entry);
-      continue;
-    }
-    const auto addresses = interface_addresses(entry);
-    if (addresses.empty()) {
-      throw std::invalid_argument("--interface: '" + entry +
-                                  "' is neither an IPv4 address nor an interface with one on this "
-                                  "host (expected e.g. 127.0.0.1, lo or eth0)");
-    }
-    out.insert(out.end(), addresses.begin(), addresses.end());
-  }
-  return out;
-}
 
 std::string prefix_text(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix) {
   std::string out;
@@ -264,33 +123,6 @@ std::optional<ParticipantIdentity> DdsContext::participant_identity(
   return participants_->find(prefix_text(prefix));
 }
 
-namespace {
-
-// Fast DDS's built-in security plugins (PKI-DH authentication, access control with signed
-// governance and permissions, AES-GCM): the standard participant properties.
-void add_security_properties(DomainParticipantQos& qos, const std::string& directory, const std::string& identity) {
-  const std::filesystem::path dir = std::filesystem::absolute(directory);
-  const auto file = [&](const std::string& name) {
-    const auto path = dir / name;
-    if (!std::filesystem::is_regular_file(path)) {
-      throw std::invalid_argument("--security: " + path.string() + " not found (scripts/make-lab-pki.sh makes it)");
-    }
-    return "file://" + path.string();
-  };
-  auto& properties = qos.properties().properties();
-  properties.emplace_back("dds.sec.auth.plugin", "builtin.PKI-DH");
-  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_ca", file("ca.pem"));
-  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_certificate", file(identity + ".pem"));
-  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.private_key", file(identity + ".key"));
-  properties.emplace_back("dds.sec.access.plugin", "builtin.Access-Permissions");
-  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.permissions_ca", file("ca.pem"));
-  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.governance", file("governance.p7s"));
-  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.permissions", file("permissions.p7s"));
-  properties.emplace_back("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
-}
-
-}  // namespace
-
 DdsContext::DdsContext(const DdsOptions& options) : participants_(std::make_unique<ParticipantDirectory>()) {
   auto* factory = DomainParticipantFactory::get_instance();
   if (!options.xml_profile_file.empty() && !std::filesystem::is_regular_file(options.xml_profile_file)) {
@@ -320,55 +152,7 @@ DdsContext::DdsContext(const DdsOptions& options) : participants_(std::make_uniq
     builtin.discovery_config.leaseDuration = Duration_t(10, 0);
     builtin.discovery_config.leaseDuration_announcementperiod = Duration_t(1, 0);
 
-    const std::vector<std::string> addresses = resolve_interfaces(options.interfaces);
-    const bool any = addresses.size() == 1 && addresses[0] == "any";
-    const bool loopback_only =
-        !any && std::all_of(addresses.begin(), addresses.end(),
-                            [](const std::string& a) { return a.rfind("127.", 0) == 0; });
-    auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-    if (!any) udp->interfaceWhiteList = addresses;
-    udp->maxInitialPeersRange = kMaxLoopbackParticipants;
-    qos.transport().use_builtin_transports = false;
-    if (options.transport == Transport::builtin) {
-      qos.transport().user_transports.push_back(
-          std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
-    }
-    qos.transport().user_transports.push_back(udp);
-
-    std::string where;
-    for (const auto& a : addresses) where += (where.empty() ? "" : ",") + a;
-    if (!options.discovery_servers.empty()) {
-      builtin.discovery_config.discoveryProtocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t::CLIENT;
-      int id = 0;
-      std::string servers;
-      for (const auto& text : options.discovery_servers) {
-        builtin.discovery_config.m_DiscoveryServers.push_back(discovery_server(text, id++));
-        servers += (servers.empty() ? "" : ",") + text;
-      }
-      // The client's own discovery traffic stays on the chosen interface, not a multicast group.
-      builtin.metatrafficMulticastLocatorList.clear();
-      if (!any) {
-        builtin.metatrafficUnicastLocatorList.clear();
-        builtin.metatrafficUnicastLocatorList.push_back(udp_locator(addresses[0], 0));
-      }
-      where += ", discovery server " + servers;
-    } else if (loopback_only) {
-      // Loopback has no multicast: find the other participants of this host by unicast on
-      // the well-known ports of the first kMaxLoopbackParticipants participant ids, and bind
-      // nothing to a wildcard or multicast address.
-      builtin.metatrafficMulticastLocatorList.clear();
-      builtin.metatrafficUnicastLocatorList.clear();
-      builtin.metatrafficUnicastLocatorList.push_back(udp_locator(addresses[0], 0));
-      qos.wire_protocol().default_unicast_locator_list.clear();
-      qos.wire_protocol().default_unicast_locator_list.push_back(udp_locator(addresses[0], 0));
-      builtin.initialPeersList.clear();
-      builtin.initialPeersList.push_back(udp_locator(addresses[0], 0));
-      where += ", unicast discovery";
-    } else {
-      where += ", multicast discovery";
-    }
-    transport_description_ = std::string(options.transport == Transport::udp ? "UDPv4" : "shared memory + UDPv4") +
-                             " on " + (any ? std::string("every interface") : where);
+    transport_description_ = configure_transport(qos, options);
     if (!options.security_dir.empty()) {
       add_security_properties(qos, options.security_dir, options.name);
       transport_description_ += ", DDS Security as " + options.name;
@@ -418,7 +202,7 @@ DataWriter* DdsContext::writer(Topic* topic, Delivery delivery, const std::strin
   if (!xml_loaded_ ||
       publisher->get_datawriter_qos_from_profile(topic->get_name(), qos) != ReturnCode_t::RETCODE_OK) {
     qos = DATAWRITER_QOS_DEFAULT;
-    apply(qos, delivery);
+    apply_delivery_qos(qos, delivery);
   }
   auto tracker = std::make_unique<MatchTracker>();
   auto* created = publisher->create_datawriter(topic, qos, tracker.get(),
@@ -443,7 +227,7 @@ DataReader* DdsContext::reader(Topic* topic, Delivery delivery, const std::vecto
   if (!xml_loaded_ ||
       subscriber->get_datareader_qos_from_profile(topic->get_name(), qos) != ReturnCode_t::RETCODE_OK) {
     qos = DATAREADER_QOS_DEFAULT;
-    apply(qos, delivery);
+    apply_delivery_qos(qos, delivery);
   }
   auto tracker = std::make_unique<MatchTracker>(on_data);
   StatusMask mask = StatusMask::subscription_matched();

@@ -1,15 +1,8 @@
 #pragma once
 // One DDS domain participant with the netmc topics, and typed writers/readers with the QoS of
-// each kind of data (topics in server/dds/topics.hpp, their types in idl/dds_types.idl):
-//   stream    best-effort, keep-last: realtime setpoints and feedback never wait for a lost
-//             sample; the axis holds its last command, the server computes with what it has.
-//   exchange  reliable with millisecond heartbeats: lockstep, where every sample is needed and a
-//             lost one is repaired after one heartbeat period instead of Fast DDS's default 3 s.
-//   control   the same reliability for job control and axis events (rare, must not be lost).
-//   log       reliable, transient-local, keep-last 64 per job.
-//   status    reliable, transient-local, keep-last 1 per node.
-// The participant talks on the chosen interfaces only (loopback unless told otherwise): a
-// motion-control network is opened on purpose, not by default.
+// each kind of data (topics in server/dds/topics.hpp, their types in idl/dds_types.idl, their QoS
+// in server/dds/dds_qos.hpp, where the participant talks in server/dds/dds_locators.hpp); see
+// docs/architecture.md.
 
 #include <fastdds/dds/core/condition/WaitSet.hpp>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
@@ -32,41 +25,10 @@
 #include <string>
 #include <vector>
 
+#include "server/dds/dds_options.hpp"
+#include "server/dds/dds_qos.hpp"
+
 namespace netmc::dds {
-
-enum class Transport {
-  builtin,   // shared memory between processes of one host, plus UDPv4 on the chosen interfaces
-  udp,       // UDPv4 only: what real hosts use and what network emulation sees
-};
-
-struct DdsOptions {
-  int domain_id = 0;
-  Transport transport = Transport::builtin;
-  // IPv4 addresses or interface names; empty: loopback only. "any": every interface.
-  std::vector<std::string> interfaces;
-  // Fast DDS Discovery Servers HOST:PORT; the i-th is the server started with id i
-  // (`fastdds discovery -i i -l HOST -p PORT`). Empty: multicast discovery (or unicast on
-  // loopback).
-  std::vector<std::string> discovery_servers;
-  std::string xml_profile_file;     // optional Fast DDS XML profiles, loaded first
-  std::string participant_profile;  // optional participant profile name in that file
-  // DDS Security (scripts/make-lab-pki.sh): the directory with ca.pem, governance.p7s,
-  // permissions.p7s and this participant's NAME.pem and NAME.key, NAME being `name`. Empty: off.
-  std::string security_dir;
-  std::string name = "netmc";
-};
-
-enum class Delivery { stream, exchange, control, log, status };
-
-// Lab-size limits (docs/operations/distributed-runs.md): instances per keyed topic, i.e. axes, nodes,
-// or jobs whose iteration logs a reader keeps.
-inline constexpr int kMaxInstances = 4096;
-// Participants on one host that find each other by unicast on loopback.
-inline constexpr int kMaxLoopbackParticipants = 64;
-
-// The interfaces of `--interface`, resolved to IPv4 addresses (names through getifaddrs).
-// Throws std::invalid_argument naming the flag for an unknown name or a malformed address.
-std::vector<std::string> resolve_interfaces(const std::vector<std::string>& interfaces);
 
 // What a participant said of itself in discovery.
 struct ParticipantIdentity {

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "server/dds/dds_context.hpp"
+#include "server/dds/dds_locators.hpp"
 #include "server/dds/time_base.hpp"
 
 namespace netmc::dds {

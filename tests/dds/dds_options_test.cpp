@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "server/dds/dds_context.hpp"
+#include "server/dds/dds_locators.hpp"
 #include "server/dds/time_base.hpp"
 
 namespace netmc::dds {
