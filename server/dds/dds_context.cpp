@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "server/dds/dds_locators.hpp"
+#include "server/dds/discovery_server_watch.hpp"
 #include "server/dds/dds_security_settings.hpp"
 
 namespace netmc::dds {
@@ -89,6 +90,9 @@ class DdsContext::ParticipantDirectory : public DomainParticipantListener {
  public:
   void on_participant_discovery(DomainParticipant*, eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
     using Status = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERY_STATUS;
+    if (info.status == Status::DISCOVERED_PARTICIPANT && discovery_servers_) {
+      discovery_servers_->discovered(info.info.m_guid.guidPrefix);
+    }
     const std::string key = prefix_text(info.info.m_guid.guidPrefix);
     std::lock_guard lock(mutex_);
     if (info.status == Status::REMOVED_PARTICIPANT || info.status == Status::DROPPED_PARTICIPANT) {
@@ -106,6 +110,11 @@ class DdsContext::ParticipantDirectory : public DomainParticipantListener {
     known_[key] = std::move(identity);
   }
 
+  // Before the participant exists: its listener then never sees the watch change.
+  void watch_discovery_servers(const DdsOptions& options) {
+    discovery_servers_ = std::make_unique<DiscoveryServerWatch>(options.discovery_servers, options.interfaces);
+  }
+
   std::optional<ParticipantIdentity> find(const std::string& prefix) const {
     std::lock_guard lock(mutex_);
     const auto it = known_.find(prefix);
@@ -116,6 +125,7 @@ class DdsContext::ParticipantDirectory : public DomainParticipantListener {
  private:
   mutable std::mutex mutex_;
   std::map<std::string, ParticipantIdentity> known_;
+  std::unique_ptr<DiscoveryServerWatch> discovery_servers_;
 };
 
 std::optional<ParticipantIdentity> DdsContext::participant_identity(
@@ -157,6 +167,7 @@ DdsContext::DdsContext(const DdsOptions& options) : participants_(std::make_uniq
       add_security_properties(qos, options.security_dir, options.name);
       transport_description_ += ", DDS Security as " + options.name;
     }
+    if (!options.discovery_servers.empty()) participants_->watch_discovery_servers(options);
     // The listener sees discovery only (StatusMask::none: no entity's data falls back to it).
     participant_ = factory->create_participant(options.domain_id, qos, participants_.get(), StatusMask::none());
   }

@@ -8,6 +8,7 @@
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <memory>
@@ -93,11 +94,28 @@ std::vector<std::string> resolve_interfaces(const std::vector<std::string>& inte
 
 std::string configure_transport(eprosima::fastdds::dds::DomainParticipantQos& qos, const DdsOptions& options) {
   auto& builtin = qos.wire_protocol().builtin;
-  const std::vector<std::string> addresses = resolve_interfaces(options.interfaces);
+  std::vector<std::string> addresses = resolve_interfaces(options.interfaces);
   const bool any = addresses.size() == 1 && addresses[0] == "any";
-  const bool loopback_only =
-      !any && std::all_of(addresses.begin(), addresses.end(),
-                          [](const std::string& a) { return a.rfind("127.", 0) == 0; });
+  const auto on_loopback = [](const std::string& a) { return a.rfind("127.", 0) == 0 || a.rfind("localhost:", 0) == 0; };
+  const bool loopback_only = !any && std::all_of(addresses.begin(), addresses.end(), on_loopback);
+  std::string loopback_added;
+  if (!any && !std::any_of(addresses.begin(), addresses.end(), on_loopback)) {
+    // A Discovery Server on loopback is reachable over loopback only, which Fast DDS's whitelist
+    // would forbid: the process would never find anyone and never know why. Loopback opens
+    // nothing beyond this host and the user plainly meant that server, so it is added (and
+    // said) rather than refusing the start.
+    for (const auto& server : options.discovery_servers) {
+      if (!on_loopback(server)) continue;
+      addresses.push_back("127.0.0.1");
+      loopback_added = ", 127.0.0.1 added for the discovery server " + server;
+      std::string given;
+      for (const auto& entry : options.interfaces) given += (given.empty() ? "" : ",") + entry;
+      spdlog::warn("--interface {} does not include loopback, where the discovery server {} listens: 127.0.0.1 "
+                   "added to the interfaces DDS may use",
+                   given, server);
+      break;
+    }
+  }
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
   if (!any) udp->interfaceWhiteList = addresses;
   udp->maxInitialPeersRange = kMaxLoopbackParticipants;
@@ -124,7 +142,7 @@ std::string configure_transport(eprosima::fastdds::dds::DomainParticipantQos& qo
       builtin.metatrafficUnicastLocatorList.clear();
       builtin.metatrafficUnicastLocatorList.push_back(udp_locator(addresses[0], 0));
     }
-    where += ", discovery server " + servers;
+    where += ", discovery server " + servers + loopback_added;
   } else if (loopback_only) {
     // Loopback has no multicast: find the other participants of this host by unicast on
     // the well-known ports of the first kMaxLoopbackParticipants participant ids, and bind

@@ -52,7 +52,8 @@ inline void add_dds_options(CLI::App& app, DdsOptions& options) {
          "--discovery-server",
          [&options](const std::string& value) { options.discovery_servers = split_list(value); },
          "Fast DDS Discovery Servers instead of multicast discovery; the i-th runs "
-         "`fastdds discovery -i i -l IPV4 -p PORT`")
+         "`fast-discovery-server -i i -l IPV4 -p PORT` (Debian's fastdds-tools); a warning if none "
+         "answers within 5 s")
       ->type_name("IPV4:PORT[,...]")
       ->envname("NETMC_DISCOVERY_SERVER");
   app.add_option("--dds-profile", options.xml_profile_file,
