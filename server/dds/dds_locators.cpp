@@ -100,18 +100,23 @@ std::string configure_transport(eprosima::fastdds::dds::DomainParticipantQos& qo
   const bool loopback_only = !any && std::all_of(addresses.begin(), addresses.end(), on_loopback);
   std::string loopback_added;
   if (!any && !std::any_of(addresses.begin(), addresses.end(), on_loopback)) {
-    // A Discovery Server on loopback is reachable over loopback only, which Fast DDS's whitelist
-    // would forbid: the process would never find anyone and never know why. Loopback opens
-    // nothing beyond this host and the user plainly meant that server, so it is added (and
-    // said) rather than refusing the start.
+    // Fast DDS talks to a Discovery Server on this host (on loopback, or on one of its own
+    // addresses: both ends then use loopback) over loopback, which a whitelist without it
+    // forbids: the process would never find anyone and never know why. Loopback opens nothing
+    // beyond this host and the user plainly meant that server, so it is added (and said) rather
+    // than refusing the start.
+    const auto on_this_host = [&](const std::string& server) {
+      const std::string host = server.substr(0, server.rfind(':'));
+      return on_loopback(server) || std::find(addresses.begin(), addresses.end(), host) != addresses.end();
+    };
     for (const auto& server : options.discovery_servers) {
-      if (!on_loopback(server)) continue;
+      if (!on_this_host(server)) continue;
       addresses.push_back("127.0.0.1");
       loopback_added = ", 127.0.0.1 added for the discovery server " + server;
       std::string given;
       for (const auto& entry : options.interfaces) given += (given.empty() ? "" : ",") + entry;
-      spdlog::warn("--interface {} does not include loopback, where the discovery server {} listens: 127.0.0.1 "
-                   "added to the interfaces DDS may use",
+      spdlog::warn("--interface {} does not include loopback, over which Fast DDS reaches the discovery server {} "
+                   "on this host: 127.0.0.1 added to the interfaces DDS may use",
                    given, server);
       break;
     }
