@@ -10,12 +10,14 @@
 #                             namespace $lab_tag-bridge (bridge br0, multicast snooping off).
 #   lab_need_nft              nft usable in a namespace (nf_tables, numgen), else exit 77.
 #   lab_need_timens           time namespaces can be made (unshare --time), else exit 77.
-#   lab_host NAME             namespace $lab_tag-NAME: lo up, eth0 (veth to br0 in the bridge
-#                             namespace) with the next address (.1, .2, ...)/24, and the route
-#                             224.0.0.0/4 dev eth0 (DDS discovery); net.ipv4.ipfrag_time 3 s.
+#   lab_host NAME [ADDRESS]   namespace $lab_tag-NAME: lo up, eth0 (veth to br0 in the bridge
+#                             namespace) with the next address (.1, .2, ...)/24, or ADDRESS/24
+#                             (e.g. a documentation address 192.0.2.10, so a test runs what the
+#                             docs print; every host of a lab then takes one in one /24), and
+#                             the route 224.0.0.0/4 dev eth0 (DDS discovery); net.ipv4.ipfrag_time 3 s.
 #                             Nothing appears in the machine's own namespace: the lab addresses
 #                             are reachable only from lab hosts, never from or to the outside.
-#   lab_addr NAME             prints the host's address (10.X.Y.N).
+#   lab_addr NAME             prints the host's address (10.X.Y.N, or its ADDRESS).
 #   lab_ns NAME               prints the host's namespace name (for ip netns exec / ip -n).
 #   lab_loss NAME PERCENT [out|in|both]
 #                             random loss of PERCENT % (integer 0-100) of the UDP datagrams (IPv4
@@ -97,7 +99,7 @@ lab__bridge=""
 lab__next_addr=1
 lab__namespaces=()      # every namespace of this run, bridge first
 declare -A lab__inode=()  # namespace inode -> name (kept after deletion, for the final check)
-declare -A lab__hostidx=() lab__pid=() lab__state=() lab__status=()
+declare -A lab__hostidx=() lab__hostaddr=() lab__pid=() lab__state=() lab__status=()
 lab__order=()           # LOGNAMEs in start order
 
 lab__skip() { echo "skipped: $*"; exit 77; }
@@ -165,20 +167,26 @@ lab_need_timens() {
 }
 
 lab_host() {
-  local name=${1:?lab_host NAME}
+  local name=${1:?lab_host NAME [ADDRESS]} address=${2:-}
   [[ $name =~ ^[A-Za-z0-9_]+$ && $name != bridge ]] || { lab__err "lab_host: bad host name '$name'"; return 1; }
   [ -n "$lab_tag" ] || { lab__err "lab_host: call lab_init first"; return 1; }
   [ -z "${lab__hostidx[$name]+x}" ] || { lab__err "lab_host: host $name exists"; return 1; }
   [ "$lab__next_addr" -le 250 ] || { lab__err "lab_host: too many hosts"; return 1; }
   local ns=$lab_tag-$name idx=$lab__next_addr
+  if [ -n "$address" ]; then
+    [[ $address =~ ^[0-9]+\.[0-9]+\.[0-9]+\.[0-9]+$ ]] || { lab__err "lab_host: bad address '$address'"; return 1; }
+  else
+    address=$lab_net.$idx
+  fi
   ip netns add "$ns" || return 1
   lab__register_ns "$ns"
   lab__hostidx[$name]=$idx
+  lab__hostaddr[$name]=$address
   lab__next_addr=$((idx + 1))
   ip -n "$ns" link set lo up &&
   ip -n "$ns" link add eth0 type veth peer name "v$idx" netns "$lab__bridge" &&
   ip -n "$lab__bridge" link set "v$idx" master br0 up &&
-  ip -n "$ns" addr add "$lab_net.$idx/24" dev eth0 &&
+  ip -n "$ns" addr add "$address/24" dev eth0 &&
   ip -n "$ns" link set eth0 up &&
   ip -n "$ns" route add 224.0.0.0/4 dev eth0 &&
   # Fragments orphaned by lab_loss (first fragment dropped) leave the reassembly queue after 3 s,
@@ -190,7 +198,7 @@ lab__idx() {
   [ -n "${lab__hostidx[${1:-}]+x}" ] || { lab__err "lab: no host '${1:-}'"; return 1; }
   echo "${lab__hostidx[$1]}"
 }
-lab_addr() { local i; i=$(lab__idx "${1:-}") && echo "$lab_net.$i"; }
+lab_addr() { lab__idx "${1:-}" >/dev/null && echo "${lab__hostaddr[$1]}"; }
 lab_ns() { lab__idx "${1:-}" >/dev/null && echo "$lab_tag-$1"; }
 
 lab_loss() {
