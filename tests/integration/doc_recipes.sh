@@ -10,8 +10,9 @@
 #                     another, multicast discovery: the job completes.
 #   discovery-server  the same page: the same through fast-discovery-server, with no multicast
 #                     route on either host: the job completes.
-#   dds-security      docs/operations/security.md: the job completes through authenticated,
-#                     encrypted DDS; a server without a certificate finds no axis.
+#   dds-security      docs/operations/security.md: the same two hosts; the job completes through
+#                     authenticated, encrypted DDS; a server without a certificate on the server
+#                     host's network (eth0) finds no axis.
 #   management-tls    docs/operations/hostile-networks-and-clients.md: `netmc nodes` over TLS with
 #                     the token; a client without the CA is refused.
 # Usage: doc_recipes.sh BUILD_DIR RECIPE
@@ -85,8 +86,8 @@ case $recipe in
   dds-security)
     # A server without a certificate of the lab's CA sees none of the secure nodes.
     rogue_exit=0
-    lab_start rogue server -- build/server/service/netmc-server --listen 127.0.0.1:7301 --transport udp \
-      --discovery-timeout 3000 --dds-name rogue-server
+    lab_start rogue server -- build/server/service/netmc-server --listen 127.0.0.1:7301 --interface eth0 \
+      --transport udp --discovery-timeout 3000 --dds-name rogue-server
     lab_wait_log rogue 'listening on' 20
     lab_exec server -- build/client/netmc run --server 127.0.0.1:7301 --axes stage1.x,stage1.y \
       --iterations 1 >"$tmp/rogue_run.txt" 2>&1 || rogue_exit=$?
