@@ -77,3 +77,25 @@ same_json() {
     return 1
   fi
 }
+
+# iteration_fields FILE FIELD...: one line per iteration of a result file (`netmc run --json`,
+# one field a line): the FIELDs' values in that order (0 when absent); diverged_at_s is -1 for an
+# iteration that did not diverge.
+iteration_fields() {
+  local file=$1
+  shift
+  awk -F': ' -v wanted="$*" '
+    BEGIN { count = split(wanted, field, " ") }
+    { v = $2; gsub(/,/, "", v) }
+    /^ *"iteration":/ { if (n) print line(); n++; delete f }
+    /^ *"[a-z0-9_]+":/ { k = $1; gsub(/[" ]/, "", k); f[k] = v }
+    function line(   i, out, x) {
+      out = ""
+      for (i = 1; i <= count; i++) {
+        x = field[i] == "diverged_at_s" ? (f["diverged"] == "true" ? f["diverged_at_s"] + 0 : -1) : f[field[i]] + 0
+        out = out (i > 1 ? " " : "") x
+      }
+      return out
+    }
+    END { if (n) print line() }' "$file"
+}

@@ -144,20 +144,7 @@ start_nodes realtime rt
 echo "Part B: realtime adrc+ilccc (best-effort control streams, h = 5 ms, 8 s iterations)"
 # rt_stats FILE: per iteration "e_sum tau_mean tau_p99 tau_max tau_sc_mean tau_ca_mean lost_feedback
 # lost_setpoints deadline_misses diverged_at" (the JSON has one field a line; diverged_at -1: stable).
-rt_stats() {
-  awk -F': ' '
-    { v = $2; gsub(/,/, "", v) }
-    /^ *"iteration":/ { if (n) print line(); n++; delete f }
-    /^ *"(e_sum_m|tau_mean_s|tau_p99_s|tau_max_s|tau_sc_mean_s|tau_ca_mean_s|lost_feedback|lost_setpoints|deadline_misses|diverged|diverged_at_s)":/ {
-      k = $1; gsub(/[" ]/, "", k); f[k] = v
-    }
-    function line() {
-      return f["e_sum_m"] + 0 " " f["tau_mean_s"] + 0 " " f["tau_p99_s"] + 0 " " f["tau_max_s"] + 0 " " \
-        f["tau_sc_mean_s"] + 0 " " f["tau_ca_mean_s"] + 0 " " f["lost_feedback"] + 0 " " \
-        f["lost_setpoints"] + 0 " " f["deadline_misses"] + 0 " " (f["diverged"] == "true" ? f["diverged_at_s"] + 0 : -1)
-    }
-    END { if (n) print line() }' "$1"
-}
+rt_stats() { iteration_fields "$1" e_sum_m tau_mean_s tau_p99_s tau_max_s tau_sc_mean_s tau_ca_mean_s lost_feedback lost_setpoints deadline_misses diverged_at_s; }
 # 2 axes x 1600 samples (8 s at 5 ms) per iteration: the share of them lost.
 print_rt() {
   awk '{

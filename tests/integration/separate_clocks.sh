@@ -122,21 +122,7 @@ run_job() {
 # per_iteration FILE: one line per iteration: e_sum tau_mean tau_p50 tau_p99 tau_max tau_sc_mean
 # tau_ca_mean lost_feedback lost_setpoints deadline_misses clock_uncertainty diverged_at (seconds,
 # metres; diverged_at -1: stable).
-per_iteration() {
-  awk -F': ' '
-    { v = $2; gsub(/,/, "", v) }
-    /^ *"iteration":/ { if (n) print line(); n++; delete f }
-    /^ *"(e_sum_m|tau_mean_s|tau_p50_s|tau_p99_s|tau_max_s|tau_sc_mean_s|tau_ca_mean_s|lost_feedback|lost_setpoints|deadline_misses|clock_uncertainty_s|diverged|diverged_at_s)":/ {
-      k = $1; gsub(/[" ]/, "", k); f[k] = v
-    }
-    function line() {
-      return f["e_sum_m"] + 0 " " f["tau_mean_s"] + 0 " " f["tau_p50_s"] + 0 " " f["tau_p99_s"] + 0 " " \
-        f["tau_max_s"] + 0 " " f["tau_sc_mean_s"] + 0 " " f["tau_ca_mean_s"] + 0 " " f["lost_feedback"] + 0 " " \
-        f["lost_setpoints"] + 0 " " f["deadline_misses"] + 0 " " f["clock_uncertainty_s"] + 0 " " \
-        (f["diverged"] == "true" ? f["diverged_at_s"] + 0 : -1)
-    }
-    END { if (n) print line() }' "$1"
-}
+per_iteration() { iteration_fields "$1" e_sum_m tau_mean_s tau_p50_s tau_p99_s tau_max_s tau_sc_mean_s tau_ca_mean_s lost_feedback lost_setpoints deadline_misses clock_uncertainty_s diverged_at_s; }
 
 print_stats() {
   awk '{
