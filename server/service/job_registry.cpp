@@ -1,0 +1,312 @@
+#include "server/service/job_registry.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include <spdlog/spdlog.h>
+
+#include "server/job/job_builder.hpp"
+#include "server/service/error_response.hpp"
+
+namespace netmc::service {
+
+double JobRegistry::unix_now_s() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+std::shared_ptr<Job> JobRegistry::find(std::uint64_t id) const {
+  const auto it = jobs_.find(id);
+  return it == jobs_.end() ? nullptr : it->second;
+}
+
+void JobRegistry::add(const std::shared_ptr<Job>& job, std::optional<std::uint64_t> stored_id) {
+  job->id = stored_id ? *stored_id : next_id_++;
+  jobs_[job->id] = job;
+}
+
+void JobRegistry::mark_ended(std::uint64_t id) { ended_.push_back(id); }
+
+void JobRegistry::forget_beyond_history() {
+  while (ended_.size() > options_.job_history) {
+    jobs_.erase(ended_.front());
+    ended_.pop_front();
+  }
+}
+
+void JobRegistry::reply(const Job& job, netmc::v1::Response response) {
+  response.set_request_id(job.request_id);
+  if (auto session = job.session.lock()) session->send(response);
+}
+
+void JobRegistry::start_watch(Job& job, const std::shared_ptr<management::Peer>& session,
+                              std::uint64_t request_id) {
+  std::erase_if(job.watchers, [](const Watcher& watcher) {
+    const auto other = watcher.session.lock();
+    return !other || !other->open();
+  });
+  if (job.watchers.size() >= options_.max_watchers_per_job) {
+    session->send(error_response(request_id, "watch: job " + std::to_string(job.id) + " has " +
+                                                 std::to_string(job.watchers.size()) +
+                                                 " watchers already (the server's limit)"));
+    return;
+  }
+  netmc::v1::Response response;
+  response.set_request_id(request_id);
+  *response.mutable_status()->add_jobs() = job.status;
+  session->send(response);
+  const auto send_iteration = [&](const netmc::v1::IterationMetrics& metrics) {
+    netmc::v1::Response update;
+    update.set_request_id(request_id);
+    update.mutable_iteration()->set_job_id(job.id);
+    update.mutable_iteration()->set_total_iterations(job.status.iterations_total());
+    *update.mutable_iteration()->mutable_metrics() = metrics;
+    session->send(update);
+  };
+  const std::string& state = job.status.state();
+  if (state == "queued" || state == "running") {
+    for (const auto& metrics : job.iterations) send_iteration(metrics);
+    job.watchers.push_back({session, request_id});
+    session->hold();  // not idle while it waits for the job
+    return;
+  }
+  // Ended. A job dropped from the queue never ran: its end is its status.
+  netmc::v1::JobFinished finished;
+  if (job.finished) {
+    finished = *job.finished;
+  } else {
+    finished.set_job_id(job.id);
+    finished.set_state(state);
+    finished.set_error(job.status.error());
+  }
+  for (const auto& metrics : finished.result().iterations()) send_iteration(metrics);
+  netmc::v1::Response end;
+  end.set_request_id(request_id);
+  *end.mutable_finished() = std::move(finished);
+  session->send(end);
+}
+
+void JobRegistry::end_watches(Job& job, const netmc::v1::JobFinished& finished) {
+  for (const auto& watcher : job.watchers) {
+    const auto session = watcher.session.lock();
+    if (!session) continue;
+    netmc::v1::Response end;
+    end.set_request_id(watcher.request_id);
+    *end.mutable_finished() = finished;
+    session->send(end);
+    session->release();
+  }
+  job.watchers.clear();
+  job.iterations.clear();  // the end carries them
+}
+
+void JobRegistry::end_unrun(Job& job, const std::string& reason) {
+  job.spec = netmc::v1::JobSpec();
+  job.status.set_state("cancelled");
+  job.status.set_error(reason);
+  job.status.clear_waiting_for();
+  job.ended_unix_s = unix_now_s();
+  netmc::v1::JobFinished finished;
+  finished.set_job_id(job.id);
+  finished.set_state("cancelled");
+  finished.set_error(reason);
+  job.finished = finished;
+  end_watches(job, finished);
+  ended_.push_back(job.id);
+  if (const auto submitter = job.session.lock()) {
+    netmc::v1::Response end;
+    end.set_request_id(job.request_id);
+    *end.mutable_finished() = finished;
+    submitter->send(end);
+    submitter->release();
+  }
+  if (options_.store) options_.store->ended(job.id, "cancelled", reason, finished.SerializeAsString());
+}
+
+void JobRegistry::deliver_iteration(const std::shared_ptr<Job>& job, netmc::v1::Response update) {
+  {
+    std::lock_guard lock(mutex_);
+    job->iterations.push_back(update.iteration().metrics());
+    for (const auto& watcher : job->watchers) {
+      if (const auto session = watcher.session.lock()) {
+        update.set_request_id(watcher.request_id);
+        session->send(update);
+      }
+    }
+  }
+  reply(*job, update);
+}
+
+void JobRegistry::count_iteration(Job& job, const sim::IterationMetrics& metrics, std::uint64_t job_cycles) {
+  std::lock_guard lock(mutex_);
+  ++totals_.iterations;
+  totals_.deadline_misses += metrics.deadline_misses;
+  totals_.lost_feedback += metrics.lost_feedback;
+  totals_.lost_setpoints += metrics.lost_setpoints;
+  totals_.tau_p50_s = metrics.tau_p50_s;
+  totals_.tau_p99_s = metrics.tau_p99_s;
+  totals_.tau_max_s = metrics.tau_max_s;
+  const std::uint64_t delays = job_cycles > metrics.lost_setpoints ? job_cycles - metrics.lost_setpoints : 0;
+  totals_.tau_sum_s += metrics.tau_mean_s * static_cast<double>(delays);
+  totals_.tau_count += delays;
+  job.status.set_iterations_done(static_cast<std::uint32_t>(metrics.iteration));
+}
+
+void JobRegistry::count_forged_samples(std::uint64_t forged) {
+  std::lock_guard lock(mutex_);
+  totals_.forged_samples += forged;
+}
+
+void JobRegistry::set_waiting_for(Job& job, const std::string& what) {
+  std::lock_guard lock(mutex_);
+  if (what.empty()) {
+    job.status.clear_waiting_for();
+  } else {
+    job.status.set_waiting_for(what);
+  }
+}
+
+std::string JobRegistry::cancel_reason(const Job& job) const {
+  std::lock_guard lock(mutex_);
+  return job.cancel_reason;
+}
+
+void JobRegistry::tell_end(const std::shared_ptr<Job>& job, const netmc::v1::JobFinished& finished) {
+  {
+    std::lock_guard lock(mutex_);
+    job->status.set_state(finished.state());
+    job->status.set_error(finished.error());
+    job->ended_unix_s = unix_now_s();
+    job->finished = finished;
+    end_watches(*job, finished);
+  }
+  netmc::v1::Response end;
+  *end.mutable_finished() = finished;
+  reply(*job, end);
+}
+
+ServiceTotals JobRegistry::totals() const {
+  std::lock_guard lock(mutex_);
+  ServiceTotals totals = totals_;
+  for (const auto& [id, job] : jobs_) ++totals.jobs_by_state[job->status.state()];
+  return totals;
+}
+
+std::vector<std::shared_ptr<Job>> JobRegistry::restore_from_store() {
+  const auto contents = options_.store->load(options_.job_history);
+  const auto make_job = [this](const store::StoredJob& stored) {
+    auto job = std::make_shared<Job>();
+    job->id = stored.id;
+    job->owner = stored.owner;
+    job->accepted_unix_s = stored.accepted_unix_s;
+    job->ended_unix_s = stored.ended_unix_s;
+    // No connection outlived the restart: the job is the server's until it ends.
+    job->keep_after_disconnect = true;
+    job->status.set_job_id(stored.id);
+    job->status.set_state(stored.state);
+    job->status.set_error(stored.error);
+    job->status.set_label(stored.label);
+    job->status.set_iterations_total(stored.iterations_total);
+    job->status.set_iterations_done(stored.iterations_done);
+    jobs_[job->id] = job;
+    return job;
+  };
+  for (const auto& stored : contents.ended) {
+    auto job = make_job(stored);
+    netmc::v1::JobFinished finished;
+    if (finished.ParseFromString(stored.finished)) job->finished = std::move(finished);
+    ended_.push_back(job->id);
+  }
+  std::vector<std::shared_ptr<Job>> requeued;
+  std::size_t failed = 0;
+  for (const auto& stored : contents.unfinished) {
+    auto job = make_job(stored);
+    if (stored.state == "running") {
+      // What it finished is kept; the iteration under way when the server stopped is lost.
+      netmc::v1::JobFinished finished;
+      finished.set_job_id(job->id);
+      finished.set_state("failed");
+      finished.set_error("server restarted during iteration " + std::to_string(stored.iterations.size() + 1));
+      (void)finished.mutable_result()->ParseFromString(stored.result_header);
+      for (const auto& iteration : stored.iterations) {
+        (void)finished.mutable_result()->add_iterations()->ParseFromString(iteration.metrics);
+      }
+      job->status.set_state("failed");
+      job->status.set_error(finished.error());
+      job->ended_unix_s = unix_now_s();
+      job->finished = finished;
+      ended_.push_back(job->id);
+      options_.store->ended(job->id, "failed", finished.error(), finished.SerializeAsString());
+      ++failed;
+      continue;
+    }
+    if (!job->spec.ParseFromString(stored.spec)) {
+      job->status.set_state("failed");
+      job->status.set_error("its stored spec cannot be read");
+      options_.store->ended(job->id, "failed", job->status.error(), {});
+      ended_.push_back(job->id);
+      continue;
+    }
+    job->spec_bytes = job->spec.ByteSizeLong();
+    job->axes = job::axis_names(job->spec);
+    requeued.push_back(job);
+  }
+  spdlog::info("job store {}: {} ended jobs in memory, {} queued again, {} failed by the restart",
+               options_.store->file().string(), contents.ended.size(), requeued.size(), failed);
+  return requeued;
+}
+
+netmc::v1::JobList JobRegistry::list_jobs(const netmc::v1::ListJobs& request) const {
+  store::JobFilter filter;
+  filter.state = request.state();
+  filter.label_contains = request.label_contains();
+  filter.since_unix_s = request.since_unix_s();
+  filter.limit = request.limit() == 0 ? 50 : std::min<std::uint32_t>(request.limit(), 10000);
+  static const std::set<std::string> states{"", "queued", "running", "done", "failed", "cancelled"};
+  if (!states.contains(filter.state)) {
+    throw std::invalid_argument("state: '" + filter.state.substr(0, 32) +
+                                "' is none of queued, running, done, failed, cancelled");
+  }
+  if (!std::isfinite(filter.since_unix_s)) throw std::invalid_argument("since: not a finite time");
+  if (filter.label_contains.size() > 256) throw std::invalid_argument("label: longer than 256 characters");
+  netmc::v1::JobList list;
+  const auto add = [&list](std::uint64_t id, const std::string& label, const std::string& state,
+                           const std::string& error, const std::string& owner, double accepted, double ended,
+                           std::uint32_t done, std::uint32_t total) {
+    auto& record = *list.add_jobs();
+    record.set_job_id(id);
+    record.set_label(label);
+    record.set_state(state);
+    record.set_error(error);
+    record.set_owner(owner);
+    record.set_accepted_unix_s(accepted);
+    record.set_ended_unix_s(ended);
+    record.set_iterations_done(done);
+    record.set_iterations_total(total);
+  };
+  if (options_.store) {
+    // The store's state lags the memory's by the writes queued: a running job is "running" in
+    // both; its end shows once written.
+    list.set_persistent(true);
+    for (const auto& job : options_.store->list(filter)) {
+      add(job.id, job.label, job.state, job.error, job.owner, job.accepted_unix_s, job.ended_unix_s,
+          job.iterations_done, job.iterations_total);
+    }
+    return list;
+  }
+  std::lock_guard lock(mutex_);
+  for (auto it = jobs_.rbegin(); it != jobs_.rend() && list.jobs_size() < static_cast<int>(filter.limit); ++it) {
+    const Job& job = *it->second;
+    const auto& status = job.status;
+    if (!filter.state.empty() && status.state() != filter.state) continue;
+    if (!filter.label_contains.empty() && status.label().find(filter.label_contains) == std::string::npos) continue;
+    if (job.accepted_unix_s < filter.since_unix_s) continue;
+    add(job.id, status.label(), status.state(), status.error(), job.owner, job.accepted_unix_s, job.ended_unix_s,
+        status.iterations_done(), status.iterations_total());
+  }
+  return list;
+}
+
+}  // namespace netmc::service
