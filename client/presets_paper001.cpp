@@ -17,7 +17,7 @@ namespace {
 constexpr std::uint32_t kSeed001Iterations = 20;
 
 // Paper 001's three controllers plus its PD-ILC with a zero-phase Q-filter: the paper's law is
-// not monotonically convergent and drifts upwards after some tens of iterations (docs/user-guide/default-study.md).
+// not monotonically convergent and drifts upwards after some tens of iterations (docs/reproductions/paper-001.md).
 constexpr double kQFilterCutoffHz = 20.0;
 
 StudyPlan seed001_study(const std::string& title, const netmc::v1::Trajectory* trajectory,

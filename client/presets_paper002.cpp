@@ -17,7 +17,7 @@ namespace {
 // Paper 002, Tables 1 and 2: the ball-screw table (eq. 1; 3 kg load: J + m rg^2 through the
 // plant's load_kg), T = 1 ms, Steffensen foot point, C4 = mfa-dtsmc and C3 = mfac with the paper's
 // gains but data_model "full": a full-form (L_y = 2, d = 1) data model, not the paper's compact
-// form (with eq. 9 both laws diverge within 20 ms; docs/reproductions.md). netmc's assumptions (section 6.3
+// form (with eq. 9 both laws diverge within 20 ms; docs/reproductions/paper-002.md). netmc's assumptions (section 6.3
 // gives no sizes or speeds): circle R = 50 mm about (75, 75) mm, 5 s per revolution, 2 revolutions; heart
 // scale 2.5 mm about (75, 75) mm, 10 s.
 netmc::v1::JobSpec seed002_job(const netmc::v1::Trajectory& trajectory, double duration_s, double load_kg,
