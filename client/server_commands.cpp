@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "client/job_token_store.hpp"
 #include "client/realtime_study_length.hpp"
 #include "client/study_flags.hpp"
 #include "client/study_report.hpp"
@@ -17,6 +18,7 @@
 #include "idl/management.pb.h"
 #include "server/drive/cia402.hpp"
 #include "server/job/job_builder.hpp"
+#include "server/management/access_token.hpp"
 #include "server/management/management_client.hpp"
 
 namespace netmc::cli {
@@ -104,9 +106,9 @@ RunOutcome follow_job(management::ManagementClient& client, std::uint64_t job_id
   }
 }
 
-// Sends one job; returns its id once the server has accepted it.
-std::uint64_t submit_job(management::ManagementClient& client, const netmc::v1::JobSpec& spec,
-                         std::uint64_t request_id, const std::string& server, bool keep_after_disconnect) {
+// Sends one job; returns its id and cancel token once the server has accepted it.
+netmc::v1::JobAccepted submit_job(management::ManagementClient& client, const netmc::v1::JobSpec& spec,
+                                  std::uint64_t request_id, const std::string& server, bool keep_after_disconnect) {
   netmc::v1::Request request;
   request.set_request_id(request_id);
   *request.mutable_submit()->mutable_spec() = spec;
@@ -116,7 +118,7 @@ std::uint64_t submit_job(management::ManagementClient& client, const netmc::v1::
   client.send(request);
   const auto accepted = expect_response(client, std::chrono::seconds(30), server);
   if (!accepted.has_accepted()) throw std::runtime_error("server " + server + ": unexpected answer to submit");
-  return accepted.accepted().job_id();
+  return accepted.accepted();
 }
 
 std::string job_label(const netmc::v1::JobSpec& spec) {
@@ -128,7 +130,7 @@ std::string job_label(const netmc::v1::JobSpec& spec) {
 RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::v1::JobSpec& spec,
                              std::uint64_t request_id, const std::string& server, bool quiet,
                              const std::function<void()>& on_iteration) {
-  const std::uint64_t job_id = submit_job(client, spec, request_id, server, false);
+  const std::uint64_t job_id = submit_job(client, spec, request_id, server, false).job_id();
   const std::string label = job_label(spec);
   if (!quiet) std::cerr << fmt::format("job {} ({}) accepted by {}\n", job_id, label, server);
   // An iteration takes seconds in realtime and milliseconds in lockstep; nodes may need
@@ -188,12 +190,23 @@ std::function<int()> add_submit_command(CLI::App& app) {
     management::ManagementClient client(flags->server, kServerConnectTimeout);
     std::uint64_t request_id = 1;
     for (const auto& spec : plan.jobs) {
-      const std::uint64_t job_id = submit_job(client, spec, request_id++, flags->server, true);
+      const auto accepted = submit_job(client, spec, request_id++, flags->server, true);
+      const std::uint64_t job_id = accepted.job_id();
       fmt::print("{}\n", job_id);
       std::fflush(stdout);
+      // The job is queued whether or not its token can be kept: say so, and go on.
+      std::string token_note;
+      try {
+        if (!accepted.cancel_token().empty()) {
+          token_note = "; cancel it from any terminal with: netmc cancel " + std::to_string(job_id) + " (its token: " +
+                       save_job_token(flags->server, job_id, accepted.cancel_token()).string() + ")";
+        }
+      } catch (const std::exception& error) {
+        std::cerr << fmt::format("job {}: its cancel token was not saved: {}\n", job_id, error.what());
+      }
       if (!verbosity().quiet) {
-        std::cerr << fmt::format("job {} ({}) queued on {}; follow it with: netmc watch {}\n", job_id,
-                                 job_label(spec), flags->server, job_id);
+        std::cerr << fmt::format("job {} ({}) queued on {}; follow it with: netmc watch {}{}\n", job_id,
+                                 job_label(spec), flags->server, job_id, token_note);
       }
     }
     return 0;
@@ -403,16 +416,26 @@ std::function<int()> add_cancel_command(CLI::App& app) {
   struct Flags {
     std::string server = "127.0.0.1:7300";
     std::uint64_t job = 0;
+    std::string job_token_file;
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* cancel = app.add_subcommand(
-      "cancel", "Cancel a job of another connection: needs the server's admin token (NETMC_TOKEN_FILE naming the "
-                "file of netmc-server --admin-token-file); Ctrl-C on `netmc run` cancels its own job");
+      "cancel", "Cancel a job of another connection: with its job token (saved by netmc submit, found here for the "
+                "same --server and job) or the server's admin token (NETMC_TOKEN_FILE naming the file of netmc-server "
+                "--admin-token-file); Ctrl-C on `netmc run` cancels its own job");
   cancel->add_option("JOB", flags->job, "The job's id")->required()->check(CLI::PositiveNumber);
   add_server_option(cancel, flags->server);
+  cancel->add_option("--job-token-file", flags->job_token_file,
+                     "The job's token file (default: the one netmc submit saved in $XDG_STATE_HOME/netmc/jobs, or "
+                     "~/.local/state/netmc/jobs)");
   return [flags]() -> int {
+    const std::optional<std::string> token =
+        flags->job_token_file.empty()
+            ? saved_job_token(flags->server, flags->job)
+            : std::optional(management::AccessToken::from_file(flags->job_token_file).value());
     print_jobs(ask_server(flags->server, [&](netmc::v1::Request& request) {
                  request.mutable_cancel()->set_job_id(flags->job);
+                 if (token) request.mutable_cancel()->set_cancel_token(*token);
                }).status());
     return 0;
   };

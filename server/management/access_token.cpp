@@ -1,6 +1,10 @@
 #include "server/management/access_token.hpp"
 
+#include <sys/random.h>
+
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
@@ -22,6 +26,26 @@ AccessToken AccessToken::from_file(const std::string& path) {
                                 ": expected one line of 16 to 4096 printable characters without spaces");
   }
   return AccessToken(token);
+}
+
+AccessToken AccessToken::random() {
+  unsigned char bytes[32];
+  std::size_t filled = 0;
+  while (filled < sizeof bytes) {
+    const ssize_t got = ::getrandom(bytes + filled, sizeof bytes - filled, 0);
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error(std::string("getrandom: ") + std::strerror(errno));
+    }
+    filled += static_cast<std::size_t>(got);
+  }
+  constexpr char kDigits[] = "0123456789abcdef";
+  std::string value;
+  for (const unsigned char byte : bytes) {
+    value += kDigits[byte >> 4];
+    value += kDigits[byte & 0xf];
+  }
+  return AccessToken(value);
 }
 
 bool AccessToken::accepts(const std::string& presented) const {

@@ -14,6 +14,9 @@ class AccessToken {
   // Throws std::invalid_argument naming the file otherwise (or when it cannot be read).
   static AccessToken from_file(const std::string& path);
 
+  // 256 bits from the kernel's CSPRNG (getrandom) as 64 hex digits: a job's cancel token.
+  static AccessToken random();
+
   // Constant time in the length of the token: a wrong guess learns nothing from the timing.
   bool accepts(const std::string& presented) const;
   const std::string& value() const { return value_; }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "idl/management.pb.h"
+#include "server/management/access_token.hpp"
 #include "server/management/management_server.hpp"
 #include "server/service/job_service_options.hpp"
 #include "server/sim/iteration_metrics.hpp"
@@ -55,6 +56,8 @@ struct Job {
   std::vector<std::string> axes;
   bool keep_after_disconnect = false;
   std::string owner;                // who submitted it
+  // Shown by another connection to cancel the job; none for a job restored from the store.
+  std::optional<management::AccessToken> cancel_token;
   double accepted_unix_s = 0.0;
   double ended_unix_s = 0.0;        // under the lock
   std::size_t spec_bytes = 0;       // counted against max_queued_spec_bytes while it waits

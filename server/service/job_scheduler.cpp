@@ -120,6 +120,12 @@ void JobScheduler::admit(const Submission& submission) {
   job->request_id = request.request_id();
   job->keep_after_disconnect = request.submit().keep_after_disconnect();
   job->owner = session->name();
+  try {
+    job->cancel_token = management::AccessToken::random();
+  } catch (const std::exception& error) {
+    refuse(std::string("submit: no cancel token for the job: ") + error.what());
+    return;
+  }
   job->accepted_unix_s = JobRegistry::unix_now_s();
   const std::string label = spec.name().empty() ? spec.controller().name() : spec.name();
   std::optional<std::uint64_t> stored_id;
@@ -151,6 +157,7 @@ void JobScheduler::admit(const Submission& submission) {
   netmc::v1::Response response;
   response.set_request_id(request.request_id());
   response.mutable_accepted()->set_job_id(job->id);
+  response.mutable_accepted()->set_cancel_token(job->cancel_token->value());
   session->send(response);
   queue_.push_back(job);
   spdlog::info("job {} accepted: {}, {} iterations on axes {}", job->id, job->status.label(), spec.iterations(),

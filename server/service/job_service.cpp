@@ -12,6 +12,9 @@
 namespace netmc::service {
 namespace {
 
+// A job's cancel token has 64 characters; a longer one is refused before it is compared.
+constexpr std::size_t kMaxCancelTokenBytes = 256;
+
 const char* health_name(netmc::dds::NodeHealth health) {
   switch (health) {
     case netmc::dds::NODE_IDLE: return "idle";
@@ -60,17 +63,28 @@ void JobService::handle(const std::shared_ptr<management::Peer>& session,
                                      "cancel: no job " + std::to_string(request.cancel().job_id())));
         return;
       }
-      if (!admin && held->session.lock() != session) {
-        session->send(error_response(request.request_id(), "cancel: job " + std::to_string(held->id) +
-                                                               " was submitted on another connection; only it, "
-                                                               "or a client with the server's admin token, may cancel "
-                                                               "the job (netmc-server --admin-token-file FILE; the "
-                                                               "client names FILE in NETMC_TOKEN_FILE)"));
+      const std::string& presented = request.cancel().cancel_token();
+      if (presented.size() > kMaxCancelTokenBytes) {
+        session->send(error_response(request.request_id(), "cancel: the job token is longer than " +
+                                                               std::to_string(kMaxCancelTokenBytes) + " bytes"));
+        return;
+      }
+      const bool submitter = held->session.lock() == session;
+      const bool token_shown = !presented.empty() && held->cancel_token && held->cancel_token->accepts(presented);
+      if (!admin && !submitter && !token_shown) {
+        session->send(error_response(
+            request.request_id(),
+            "cancel: job " + std::to_string(held->id) + " was submitted on another connection" +
+                (presented.empty() ? "" : " and the job token shown is not its token") +
+                "; cancel it with its job token (netmc submit saved it for the user who submitted it, where netmc "
+                "cancel finds it; or name the file with --job-token-file), or with the server's admin token "
+                "(netmc-server --admin-token-file FILE; the client names FILE in NETMC_TOKEN_FILE)"));
         return;
       }
       Job& job = *held;
-      job.cancel_reason = admin && job.session.lock() != session ? "cancelled by an admin (netmc cancel)"
-                                                                 : "cancelled by its client";
+      job.cancel_reason = submitter     ? "cancelled by its client"
+                          : token_shown ? "cancelled with its job token (netmc cancel)"
+                                        : "cancelled by an admin (netmc cancel)";
       job.cancel.store(true);
       scheduler_.drop_if_queued(held);
       *response.mutable_status()->add_jobs() = job.status;

@@ -33,7 +33,7 @@ class JobService {
   // Called on the management endpoint's thread for every request; never blocks on a job spec
   // (submitted specs are checked on a thread of their own).
   // `admin`: the request showed the admin token (--admin-token-file): it may cancel any job;
-  // otherwise only the connection that submitted a job may.
+  // otherwise only the connection that submitted a job, or one showing the job's cancel token.
   void handle(const std::shared_ptr<management::Peer>& session, const netmc::v1::Request& request,
               bool admin = false);
 

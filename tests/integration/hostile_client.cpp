@@ -144,7 +144,21 @@ void cancel_by_another_connection() {
   const auto answer = intruder.receive(5s);
   verdict(answer && answer->has_error() && error_of(answer).find("another connection") != std::string::npos,
           "cancel from another connection", error_of(answer));
+  // Job tokens it guessed: one of the right form, one of a MiB; both refused, neither cancels.
+  cancel.set_request_id(11);
+  cancel.mutable_cancel()->set_cancel_token(std::string(64, '0'));
+  intruder.send(cancel);
+  const auto guessed = intruder.receive(5s);
+  verdict(guessed && guessed->has_error() && error_of(guessed).find("not its token") != std::string::npos,
+          "cancel with a guessed job token", error_of(guessed));
+  cancel.set_request_id(12);
+  cancel.mutable_cancel()->set_cancel_token(std::string(1 << 20, 'x'));
+  intruder.send(cancel);
+  const auto oversized = intruder.receive(5s);
+  verdict(oversized && oversized->has_error() && error_of(oversized).find("longer than") != std::string::npos,
+          "cancel with a 1 MiB job token", error_of(oversized));
   // The owner may, and its job ends cancelled.
+  cancel.mutable_cancel()->clear_cancel_token();
   cancel.set_request_id(10);
   owner.send(cancel);
   std::string state;

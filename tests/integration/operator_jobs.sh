@@ -2,7 +2,9 @@
 # What an operator does with jobs, on loopback in lockstep, with a client token and an admin
 # token: Ctrl-C on `netmc run` cancels its job (`netmc status` shows it cancelled) and the job
 # queued behind it, which `netmc status` showed waiting for it, starts at once; `netmc cancel`
-# of another connection's job is refused with the client token and done with the admin token;
+# of another connection's job is refused with the client token and done with the admin token, and
+# a job from `netmc submit` is cancelled from another connection with the job token it saved
+# (refused without it or with a wrong one);
 # a job from `netmc submit` runs on without its client, and `netmc watch` follows it from other
 # connections, joining mid-run or after its end, with the result `netmc sim` gives.
 # Usage: operator_jobs.sh BUILD_DIR
@@ -17,6 +19,7 @@ start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport
   --token-file "$tmp/token" --admin-token-file "$tmp/admin"
 port=$(server_port 127.0.0.1)
 export NETMC_TOKEN_FILE=$tmp/token
+export XDG_STATE_HOME=$tmp/state  # where netmc submit keeps the jobs' cancel tokens
 server=(--server "127.0.0.1:$port")
 long=(--controller adrc+ilccc --iterations 500)
 
@@ -100,6 +103,38 @@ cmp -s "$tmp/watch-live.json" "$tmp/watch-ended.json" ||
   { echo "FAIL: watching the ended job gave another result"; exit 1; }
 "$netmc" sim --quiet --controller adrc+ilccc --iterations 30 --duration 4s --json "$tmp/sim-30.json" >/dev/null
 same_json "$tmp/sim-30.json" "$tmp/watch-live.json" "netmc submit + watch (job 4, 30 iterations)"
+# netmc submit keeps each job's cancel token (0600, in a 0700 directory): netmc cancel from
+# another connection finds it; without it, or with a wrong one, the cancel is refused.
+"$netmc" submit "${server[@]}" --quiet "${long[@]}" >"$tmp/submitted-long.txt"
+running_job=$(cat "$tmp/submitted-long.txt")
+wait_state "$running_job" running 20
+"$netmc" submit "${server[@]}" --quiet --controller adrc --iterations 1 >"$tmp/submitted-queued.txt"
+queued_job=$(cat "$tmp/submitted-queued.txt")
+wait_state "$queued_job" queued 10
+token_file=$XDG_STATE_HOME/netmc/jobs/127.0.0.1_$port-job-$queued_job.token
+[ "$(stat -c %a "$token_file")" = 600 ] && [ "$(stat -c %a "$XDG_STATE_HOME/netmc/jobs")" = 700 ] ||
+  { echo "FAIL: the job token is not private:"; ls -la "$XDG_STATE_HOME/netmc/jobs"; exit 1; }
+refused=0
+XDG_STATE_HOME=$tmp/another-user "$netmc" cancel "$queued_job" "${server[@]}" >"$tmp/cancel-no-token.txt" 2>&1 ||
+  refused=$?
+[ "$refused" -ne 0 ] && grep -q "with its job token" "$tmp/cancel-no-token.txt" ||
+  { echo "FAIL: netmc cancel without the job token was not refused"; cat "$tmp/cancel-no-token.txt"; exit 1; }
+head -c 32 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$tmp/wrong-token"
+refused=0
+"$netmc" cancel "$queued_job" "${server[@]}" --job-token-file "$tmp/wrong-token" >"$tmp/cancel-wrong.txt" 2>&1 ||
+  refused=$?
+[ "$refused" -ne 0 ] && grep -q "not its token" "$tmp/cancel-wrong.txt" ||
+  { echo "FAIL: netmc cancel with a wrong job token was not refused"; cat "$tmp/cancel-wrong.txt"; exit 1; }
+[ "$(state "$queued_job")" = queued ] || { echo "FAIL: a refused cancel ended job $queued_job"; exit 1; }
+"$netmc" cancel "$queued_job" "${server[@]}" >/dev/null
+wait_state "$queued_job" cancelled 5
+"$netmc" status "$queued_job" "${server[@]}" | grep -q "cancelled with its job token" ||
+  { echo "FAIL: the status does not say how job $queued_job was cancelled"; exit 1; }
+"$netmc" cancel "$running_job" "${server[@]}" >/dev/null
+wait_state "$running_job" cancelled 5
+echo "netmc cancel $queued_job (queued) from another connection: refused without its job token and with a" \
+  "wrong one, done with it; job $running_job (running) likewise"
+
 unknown=0
 "$netmc" watch 99 "${server[@]}" >"$tmp/watch-unknown.txt" 2>&1 || unknown=$?
 [ "$unknown" -ne 0 ] && grep -q "watch: no job 99" "$tmp/watch-unknown.txt" ||
