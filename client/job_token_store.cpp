@@ -57,6 +57,14 @@ std::optional<std::filesystem::path> job_token_path(const std::string& server, s
 }
 
 std::filesystem::path save_job_token(const std::string& server, std::uint64_t job_id, const std::string& token) {
+  // The token comes from the server: keep only what a netmc-server sends (hex, 16-256 characters),
+  // never a long or multi-line text into the user's files.
+  const bool plain_hex = token.size() >= 16 && token.size() <= 256 &&
+                         token.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
+  if (!plain_hex) {
+    throw std::runtime_error("the server's cancel token is not 16-256 hexadecimal characters (" +
+                             std::to_string(token.size()) + " bytes): not kept");
+  }
   const auto path = job_token_path(server, job_id);
   if (!path) throw std::runtime_error("job token: neither XDG_STATE_HOME nor HOME is set");
   make_private_directory(path->parent_path());

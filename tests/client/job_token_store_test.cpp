@@ -40,6 +40,17 @@ TEST(JobTokenStore, SavedTokenIsPrivateAndFoundForItsServerAndJobOnly) {
   EXPECT_EQ(saved_job_token("127.0.0.1:7301", 5), std::nullopt);
 }
 
+TEST(JobTokenStore, TokenNotShapedAsTheServerMakesThemIsNotKept) {
+  // The token arrives from the network: a hostile server's text must not land in the user's files.
+  const ScratchStateHome home;
+  for (const std::string& token : {std::string("abc"), std::string(257, 'a'), std::string(32, 'a') + "\nrm -rf /",
+                                   std::string(32, 'g')}) {
+    EXPECT_THROW(save_job_token("127.0.0.1:7300", 7, token), std::runtime_error) << token.size();
+  }
+  EXPECT_EQ(saved_job_token("127.0.0.1:7300", 7), std::nullopt);
+  EXPECT_NO_THROW(save_job_token("127.0.0.1:7300", 7, std::string(64, 'f')));
+}
+
 TEST(JobTokenStore, PlantedSymlinkIsNotWrittenThrough) {
   const ScratchStateHome home;
   const fs::path directory = home.path / "netmc" / "jobs";
