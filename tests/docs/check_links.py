@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 """Every relative link of README.md and docs/ resolves: the file exists in the repository and,
 for a link to a heading (page.md#heading), the page has that heading (GitHub's anchor rule).
+And every page of docs/ is linked from README.md (the front door), or from a README.md of its own
+folder that the front door links (docs/reproductions/).
 
 Usage: check_links.py REPOSITORY_ROOT
 Exit 0 when all resolve; 1 with each broken link named (file:line: target).
@@ -38,6 +40,27 @@ def pages(root):
                 yield os.path.join(folder, name)
 
 
+def linked_from(page):
+    """The files a Markdown page links to (relative links, resolved, fragments dropped)."""
+    targets = set()
+    with open(page, encoding="utf-8") as f:
+        for target in LINK.findall(f.read()):
+            path = target.partition("#")[0]
+            if path and not re.match(r"^[a-z]+:", path):
+                targets.add(os.path.normpath(os.path.join(os.path.dirname(page), path)))
+    return targets
+
+
+def unlinked_pages(root):
+    front = linked_from(os.path.join(root, "README.md"))
+    reachable = set(front)
+    for target in front:  # a folder's own index page counts for the pages it links
+        if os.path.basename(target) == "README.md" and target.startswith(os.path.join(root, "docs")):
+            reachable |= linked_from(target)
+    return [os.path.relpath(page, root) for page in pages(root)
+            if not page.endswith(os.sep + "README.md") and page not in reachable]
+
+
 def main():
     root = os.path.abspath(sys.argv[1])
     broken = []
@@ -64,9 +87,13 @@ def main():
                         broken.append(f"{where} (no such file)")
                     elif fragment and resolved.endswith(".md") and fragment not in anchors(resolved):
                         broken.append(f"{where} (no such heading)")
+    unlinked = unlinked_pages(root)
+    for page in unlinked:
+        broken.append(f"README.md: does not link {page}")
     for line in broken:
         print(line)
-    print(f"{checked} relative links checked, {len(broken)} broken")
+    print(f"{checked} relative links checked, {len(broken) - len(unlinked)} broken; "
+          f"{len(unlinked)} of the docs' pages not linked from the README")
     return 1 if broken else 0
 
 
