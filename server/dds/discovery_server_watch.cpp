@@ -1,10 +1,10 @@
 #include "server/dds/discovery_server_watch.hpp"
 
 #include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <cstdio>
 
 namespace netmc::dds {
 
@@ -54,11 +54,10 @@ std::string DiscoveryServerWatch::warning(const std::string& address, int id,
   std::string over;
   for (const auto& entry : interfaces) over += (over.empty() ? "" : ",") + entry;
   if (over.empty()) over = "127.0.0.1 (the default)";
-  char seconds[32];
-  std::snprintf(seconds, sizeof seconds, "%g", std::chrono::duration<double>(bound).count());
-  return "no Fast DDS discovery server answered at " + address + " within " + seconds +
-         " s: check that it runs (fast-discovery-server -i " + std::to_string(id) + " -l " + host + " -p " + port +
-         ") and that this host reaches it over --interface " + over;
+  return fmt::format(
+      "no Fast DDS discovery server answered at {} within {:g} s: check that it runs (fast-discovery-server -i {} "
+      "-l {} -p {}) and that this host reaches it over --interface {}",
+      address, std::chrono::duration<double>(bound).count(), id, host, port, over);
 }
 
 void DiscoveryServerWatch::watch() {

@@ -40,15 +40,30 @@ def pages(root):
                 yield os.path.join(folder, name)
 
 
-def linked_from(page):
-    """The files a Markdown page links to (relative links, resolved, fragments dropped)."""
-    targets = set()
+def relative_links(page):
+    """(line number, target) of each link of a Markdown page to this repository, outside code fences."""
+    fenced = False
     with open(page, encoding="utf-8") as f:
-        for target in LINK.findall(f.read()):
-            path = target.partition("#")[0]
-            if path and not re.match(r"^[a-z]+:", path):
-                targets.add(os.path.normpath(os.path.join(os.path.dirname(page), path)))
-    return targets
+        for number, line in enumerate(f, 1):
+            if FENCE.match(line):
+                fenced = not fenced
+                continue
+            if fenced:
+                continue
+            for target in LINK.findall(line):
+                if not re.match(r"^[a-z]+:", target):  # http:, https:, mailto: are not this repository's
+                    yield number, target
+
+
+def resolve(page, target):
+    """The file a link names (the page itself for a bare #fragment)."""
+    path = target.partition("#")[0]
+    return os.path.normpath(os.path.join(os.path.dirname(page), path)) if path else page
+
+
+def linked_from(page):
+    """The files a Markdown page links to."""
+    return {resolve(page, target) for _, target in relative_links(page)}
 
 
 def unlinked_pages(root):
@@ -66,27 +81,17 @@ def main():
     broken = []
     checked = 0
     for page in pages(root):
-        fenced = False
-        with open(page, encoding="utf-8") as f:
-            for number, line in enumerate(f, 1):
-                if FENCE.match(line):
-                    fenced = not fenced
-                    continue
-                if fenced:
-                    continue
-                for target in LINK.findall(line):
-                    if re.match(r"^[a-z]+:", target):
-                        continue  # http:, https:, mailto: are not this repository's
-                    path, _, fragment = target.partition("#")
-                    resolved = os.path.normpath(os.path.join(os.path.dirname(page), path)) if path else page
-                    checked += 1
-                    where = f"{os.path.relpath(page, root)}:{number}: {target}"
-                    if not resolved.startswith(root + os.sep) and resolved != root:
-                        broken.append(f"{where} (outside the repository)")
-                    elif not os.path.exists(resolved):
-                        broken.append(f"{where} (no such file)")
-                    elif fragment and resolved.endswith(".md") and fragment not in anchors(resolved):
-                        broken.append(f"{where} (no such heading)")
+        for number, target in relative_links(page):
+            fragment = target.partition("#")[2]
+            resolved = resolve(page, target)
+            checked += 1
+            where = f"{os.path.relpath(page, root)}:{number}: {target}"
+            if not resolved.startswith(root + os.sep) and resolved != root:
+                broken.append(f"{where} (outside the repository)")
+            elif not os.path.exists(resolved):
+                broken.append(f"{where} (no such file)")
+            elif fragment and resolved.endswith(".md") and fragment not in anchors(resolved):
+                broken.append(f"{where} (no such heading)")
     unlinked = unlinked_pages(root)
     for page in unlinked:
         broken.append(f"README.md: does not link {page}")
