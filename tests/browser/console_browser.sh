@@ -41,9 +41,7 @@ start_lab() {  # [--realtime-scheduling] [netmc-server flags...]
   url=$(sed -n 's|.*console on \(https*://127.0.0.1:[0-9]*/\).*|\1|p' "$tmp/server.log")
 }
 stop_lab() {
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
-  pids=()
+  stop_all
   domain=$(( domain + 1 ))
 }
 

@@ -55,12 +55,6 @@ cluster() {
   done
   sleep 3.5   # the server's clock probes (one per 100 ms, best of 32) fill their window
 }
-stop_cluster() {
-  local pid
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
-  pids=()
-}
 job() {  # TAG: a realtime job; sets job_status
   job_status=0
   timeout 120 "$netmc" run --server "127.0.0.1:$port" --clock realtime --controller adrc+ilccc --iterations 2 \
@@ -95,5 +89,5 @@ for base in monotonic realtime; do
     [ "$job_status" -eq 0 ] || { echo "FAIL: realtime: the next job failed:"; tail -n 3 "$tmp/next-$base.out"; exit 1; }
     echo "realtime: the next job, with x's wall clock $step s ahead, completed"
   fi
-  stop_cluster
+  stop_all
 done

@@ -187,6 +187,18 @@ for p in $stubborn; do ! lab__alive "$p" || fail "stubborn process $p still aliv
 echo "lab_stop: tree of 4 (unshare, bash, 2 sleeps) ended by SIGTERM (status 143);" \
   "SIGTERM-ignoring pair SIGKILLed after $(((t1 - t0) / 1000000)) ms (status 137)"
 
+# A name is taken again only once its session is over (a restarted server).
+lab_start again - -- sleep 1000
+if lab_start again - -- true 2>"$tmp/again.err"; then fail "a running name was started again"; fi
+grep -q "again is still running" "$tmp/again.err" || fail "no clear message: $(cat "$tmp/again.err")"
+first=$(lab_pid again)
+lab_stop again
+lab_start again - -- sh -c 'echo second'
+lab_wait again 10
+[ "$(lab_pid again)" != "$first" ] && [ "$(lab_status again)" = 0 ] && [ "$(cat "$tmp/again.log")" = second ] ||
+  fail "the name again did not start anew: pid $(lab_pid again), status $(lab_status again)"
+echo "lab_start: a running name refused, the same name started again once it ended"
+
 # assert_loopback_only on the machine's own namespace, with processes named labfake-* (not netmc-*,
 # which a concurrent netmc test's assert_loopback_only 'netmc' would see).
 fake='

@@ -3,8 +3,9 @@
 # which sets the shell options and the failure trap, reads the build directory (the first
 # argument, as netmc_add_script_test passes it) and names the programs: $netmc, $netmc_server,
 # $netmc_axis; $source_dir is the repository, $here this folder. Then: a scratch directory $tmp,
-# background processes stopped on exit (start NAME COMMAND...; lab.sh's lab_start in a
-# namespaced host), and the management port netmc-server reports once it listens.
+# background processes started, waited for and stopped one way (processes.sh: start NAME
+# COMMAND... here, lab_start in a namespaced host of lab.sh), and the management port
+# netmc-server reports once it listens.
 set -euo pipefail
 trap 'echo "$0: failed at line $LINENO (exit $?)"' ERR
 [ $# -ge 1 ] && [ -d "$1" ] || { echo "usage: $0 BUILD_DIR [arguments...]" >&2; exit 2; }
@@ -16,12 +17,15 @@ netmc_server=$build/server/service/netmc-server
 netmc_axis=$build/server/axis/netmc-axis
 
 tmp=$(mktemp -d)
-pids=()
+pids=()          # what start started, and any other background pid a test adds
 extra_cleanup=()
-# Stops every process started here: SIGTERM, up to 5 s to go, then SIGKILL; a process that had
-# to be killed, or survives, fails the test (exit 1) even if its checks passed.
+source "$(dirname "${BASH_SOURCE[0]}")/processes.sh"
+# Stops every process started here: their sessions (lab__stop_sessions: SIGTERM, up to 5 s to go,
+# then SIGKILL), then any other pid in pids the same way; a process that had to be killed, or
+# survives, fails the test (exit 1) even if its checks passed.
 cleanup() {
   local rc=0 left pid
+  lab__stop_sessions || rc=1
   for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
   for _ in $(seq 50); do
     left=""
@@ -45,12 +49,24 @@ trap 'status=$?; cleanup || status=1; exit "$status"' EXIT
 # A DDS domain of its own for each run, so concurrent runs do not meet.
 domain=$(( 100 + RANDOM % 100 ))
 
-# start NAME COMMAND...: runs COMMAND in the background, output in $tmp/NAME.log.
+# start NAME COMMAND...: lab_start NAME - -- COMMAND... (processes.sh: on this machine's network,
+# in a session of its own, output in $tmp/NAME.log); its pid is appended to pids.
 start() {
   local name=$1
   shift
-  "$@" >"$tmp/$name.log" 2>&1 &
-  pids+=($!)
+  lab_start "$name" - -- "$@"
+  pids+=("$(lab_pid "$name")")
+}
+
+# stop_all: stops every process started so far, as the cleanup does (returns 1 if one had to be
+# killed); their names may then be started again.
+stop_all() {
+  local rc=0 pid
+  lab__stop_sessions || rc=1
+  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
+  for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
+  pids=()
+  return "$rc"
 }
 
 # server_port HOST: waits up to 10 s for netmc-server (log $tmp/server.log) to listen.
