@@ -178,7 +178,6 @@ per_iteration "$tmp/run_base.json" >"$tmp/stats_base.txt"
 print_stats "$tmp/stats_base.txt"
 check_stable "$tmp/stats_base.txt"
 [ "$(wc -l <"$tmp/stats_base.txt")" -eq 2 ] || lab_fail "expected 2 iterations in the baseline JSON"
-for p in server_base x_base y_base; do lab_stop "$p"; done
 
 # Realtime delays vary from run to run with scheduling and the load on the machine (2 cores: the
 # server, two axes and DDS threads share them), and p99 lies in the tail, which a few preemptions
@@ -186,7 +185,8 @@ for p in server_base x_base y_base; do lab_stop "$p"; done
 # enter the schedule, once per iteration, and the tau split), so the mean of the iterations' tau_mean
 # must agree within 0.5 ms (the emulated delay alone is 0.55 ms), and the mean tau_p99 within 2 ms
 # or a factor of 2 (either suffices).
-awk -v f="$tmp/stats.txt" -v g="$tmp/stats_base.txt" 'BEGIN {
+compare_delays() {  # BASELINE_STATS
+  awk -v f="$tmp/stats.txt" -v g="$1" 'BEGIN {
   while ((getline line < f) > 0) { split(line, a, " "); m1 += a[2]; p1 += a[4]; n1++ }
   while ((getline line < g) > 0) { split(line, a, " "); m2 += a[2]; p2 += a[4]; n2++ }
   m1 /= n1; p1 /= n1; m2 /= n2; p2 /= n2
@@ -199,6 +199,18 @@ awk -v f="$tmp/stats.txt" -v g="$tmp/stats_base.txt" 'BEGIN {
   printf "tau_p99:  unrelated clocks %.3f ms, one clock %.3f ms: difference %+.3f ms, ratio %.2f" \
     " (limit 2 ms or x2): %s\n", p1 * 1e3, p2 * 1e3, dp * 1e3, ratio, okp ? "ok" : "WRONG"
   exit (okm && okp) ? 0 : 1
-}' || lab_fail "delays differ between unrelated clocks and one clock"
+}'
+}
+# A stretch of seconds in which the shared machine delays every process (seen once here: p99 13 ms
+# against 2 ms in both runs before and after) moves one run's tail by far more: a disagreement is
+# measured once more on a second baseline, and only one seen against both fails.
+if ! compare_delays "$tmp/stats_base.txt"; then
+  echo "  once more: a second baseline job on the same hosts"
+  run_job _again 2
+  per_iteration "$tmp/run_again.json" >"$tmp/stats_again.txt"
+  print_stats "$tmp/stats_again.txt"
+  compare_delays "$tmp/stats_again.txt" || lab_fail "delays differ between unrelated clocks and one clock (twice)"
+fi
+for p in server_base x_base y_base; do lab_stop "$p"; done
 
 echo "separate clocks passed in $(awk -v a="$t_start" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.0f", b - a }') s"
