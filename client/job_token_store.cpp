@@ -87,4 +87,10 @@ std::optional<std::string> saved_job_token(const std::string& server, std::uint6
   return management::AccessToken::from_file(path->string()).value();
 }
 
+bool forget_job_token(const std::string& server, std::uint64_t job_id) {
+  const auto path = job_token_path(server, job_id);
+  std::error_code error;
+  return path && std::filesystem::remove(*path, error);
+}
+
 }  // namespace netmc::cli

@@ -23,4 +23,8 @@ std::filesystem::path save_job_token(const std::string& server, std::uint64_t jo
 // The saved token of `job_id` on `server`, or nullopt if none was saved.
 std::optional<std::string> saved_job_token(const std::string& server, std::uint64_t job_id);
 
+// Deletes the saved token of `job_id` on `server` (a job that is cancelled needs it no more);
+// true if there was one.
+bool forget_job_token(const std::string& server, std::uint64_t job_id);
+
 }  // namespace netmc::cli

@@ -437,6 +437,8 @@ std::function<int()> add_cancel_command(CLI::App& app) {
                  request.mutable_cancel()->set_job_id(flags->job);
                  if (token) request.mutable_cancel()->set_cancel_token(*token);
                }).status());
+    // Cancelled (a refusal throws above): the saved token has done its work.
+    if (flags->job_token_file.empty()) forget_job_token(flags->server, flags->job);
     return 0;
   };
 }

@@ -65,5 +65,16 @@ TEST(JobTokenStore, PlantedSymlinkIsNotWrittenThrough) {
   EXPECT_EQ(content, "precious");
 }
 
+TEST(JobTokenStore, ForgottenTokenIsGoneForItsJobOnly) {
+  const ScratchStateHome home;
+  const fs::path five = save_job_token("127.0.0.1:7300", 5, std::string(64, 'a'));
+  const fs::path six = save_job_token("127.0.0.1:7300", 6, std::string(64, 'b'));
+  EXPECT_TRUE(forget_job_token("127.0.0.1:7300", 5));
+  EXPECT_FALSE(fs::exists(five));
+  EXPECT_EQ(saved_job_token("127.0.0.1:7300", 5), std::nullopt);
+  EXPECT_TRUE(fs::exists(six));
+  EXPECT_FALSE(forget_job_token("127.0.0.1:7300", 5));  // already gone: nothing to do, no error
+}
+
 }  // namespace
 }  // namespace netmc::cli

@@ -128,12 +128,13 @@ refused=0
 [ "$(state "$queued_job")" = queued ] || { echo "FAIL: a refused cancel ended job $queued_job"; exit 1; }
 "$netmc" cancel "$queued_job" "${server[@]}" >/dev/null
 wait_state "$queued_job" cancelled 5
+[ ! -e "$token_file" ] || { echo "FAIL: the cancelled job's token file is still there: $token_file"; exit 1; }
 "$netmc" status "$queued_job" "${server[@]}" | grep -q "cancelled with its job token" ||
   { echo "FAIL: the status does not say how job $queued_job was cancelled"; exit 1; }
 "$netmc" cancel "$running_job" "${server[@]}" >/dev/null
 wait_state "$running_job" cancelled 5
 echo "netmc cancel $queued_job (queued) from another connection: refused without its job token and with a" \
-  "wrong one, done with it; job $running_job (running) likewise"
+  "wrong one, done with it (its token file then deleted); job $running_job (running) likewise"
 
 unknown=0
 "$netmc" watch 99 "${server[@]}" >"$tmp/watch-unknown.txt" 2>&1 || unknown=$?
