@@ -235,30 +235,37 @@ lab_keep_logs() {
 
 lab_stop() {
   lab__known "${1:-}" || return 1
-  local log=$1 grace=${LAB_STOP_GRACE:-5} pid members i end
+  local log=$1 pid st=0
   pid=${lab__pid[$log]}
-  members=$(lab__session_members "$pid")
-  if [ -n "$members" ]; then
-    lab__signal_session TERM "$pid"
-    end=$(($(lab__now_ms) + grace * 1000))
-    while :; do
-      sleep 0.05
-      members=$(lab__session_members "$pid")
-      [ -n "$members" ] && [ "$(lab__now_ms)" -lt "$end" ] || break
-    done
-    if [ -n "$members" ]; then
-      echo "lab_stop: $log still running ${grace} s after SIGTERM, sending SIGKILL to:" >&2
-      ps -o pid=,stat=,args= -p "$(tr '\n' ',' <<<"$members" | sed 's/,*$//')" >&2 || true
-      lab__signal_session KILL "$pid"
-      for ((i = 0; i < 60; i++)); do
-        members=$(lab__session_members "$pid")
-        [ -n "$members" ] || break
-        sleep 0.05
-      done
-    fi
-  fi
+  lab__terminate "lab_stop: $log" "$pid" || st=$?
   lab__alive "$pid" || lab__reap "$log"
-  [ -z "$members" ]
+  [ "$st" -ne 2 ]
+}
+
+# lab__terminate LABEL SID...: SIGTERM to the sessions, up to $LAB_STOP_GRACE (default 5) seconds
+# for all their processes to end, then SIGKILL (LABEL and the processes said on stderr). Returns 0
+# if all ended on SIGTERM, 1 if some had to be killed, 2 if some survive SIGKILL (3 s).
+lab__terminate() {
+  local label=$1 grace=${LAB_STOP_GRACE:-5} left end i
+  shift
+  left=$(lab__members_of "$@")
+  [ -n "$left" ] || return 0
+  lab__signal_session TERM "$@"
+  end=$(($(lab__now_ms) + grace * 1000))
+  while :; do
+    sleep 0.05
+    left=$(lab__members_of "$@")
+    [ -n "$left" ] && [ "$(lab__now_ms)" -lt "$end" ] || break
+  done
+  [ -n "$left" ] || return 0
+  echo "$label: still running ${grace} s after SIGTERM, sending SIGKILL to:" >&2
+  ps -o pid=,stat=,args= -p "$(tr '\n' ',' <<<"$left" | sed 's/,*$//')" >&2 || true
+  lab__signal_session KILL "$@"
+  for ((i = 0; i < 60; i++)); do
+    [ -n "$(lab__members_of "$@")" ] || return 1
+    sleep 0.05
+  done
+  return 2
 }
 
 
@@ -286,32 +293,13 @@ lab__leftovers() {
 
 
 lab__stop_sessions() {
-  local - rc=0 log i left end
+  local - rc=0 log
   set +e
-  # All sessions at once: SIGTERM, a common grace period, SIGKILL for what is left.
+  # All sessions at once: one common grace period.
   local -a sessions=()
   for log in "${lab__order[@]}"; do sessions+=("${lab__pid[$log]}"); done
   [ "${#sessions[@]}" -gt 0 ] || return 0
-  left=$(lab__members_of "${sessions[@]}")
-  if [ -n "$left" ]; then
-    lab__signal_session TERM "${sessions[@]}"
-    end=$(($(lab__now_ms) + ${LAB_STOP_GRACE:-5} * 1000))
-    while :; do
-      sleep 0.05
-      left=$(lab__members_of "${sessions[@]}")
-      [ -n "$left" ] && [ "$(lab__now_ms)" -lt "$end" ] || break
-    done
-    if [ -n "$left" ]; then
-      echo "cleanup: still running ${LAB_STOP_GRACE:-5} s after SIGTERM, sending SIGKILL to:" >&2
-      ps -o pid=,stat=,args= -p "$(tr '\n' ',' <<<"$left" | sed 's/,*$//')" >&2
-      lab__signal_session KILL "${sessions[@]}"
-      rc=1
-      for ((i = 0; i < 40; i++)); do
-        [ -n "$(lab__members_of "${sessions[@]}")" ] || break
-        sleep 0.05
-      done
-    fi
-  fi
+  lab__terminate cleanup "${sessions[@]}" || rc=1
   for log in "${lab__order[@]}"; do lab__alive "${lab__pid[$log]}" || lab__reap "$log"; done
   return "$rc"
 }
