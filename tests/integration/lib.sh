@@ -20,11 +20,11 @@ tmp=$(mktemp -d)
 pids=()          # what start started, and any other background pid a test adds
 extra_cleanup=()
 source "$(dirname "${BASH_SOURCE[0]}")/processes.sh"
-# Stops every process started here: their sessions (lab__stop_sessions: SIGTERM, up to 5 s to go,
-# then SIGKILL), then any other pid in pids the same way; a process that had to be killed, or
-# survives, fails the test (exit 1) even if its checks passed.
-cleanup() {
-  local rc=0 left pid
+# stop_all: stops every process started so far: their sessions (lab__stop_sessions: SIGTERM, up
+# to 5 s to go, then SIGKILL), then any other pid in pids the same way. Returns 1 if one had to be
+# killed, or survives; their names may then be started again.
+stop_all() {
+  local rc=0 left="" pid
   lab__stop_sessions || rc=1
   for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
   for _ in $(seq 50); do
@@ -39,6 +39,15 @@ cleanup() {
     kill -KILL $left 2>/dev/null || true
     rc=1
   fi
+  for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
+  pids=()
+  return "$rc"
+}
+# On exit: stop_all; a process that had to be killed, or survives, fails the test (exit 1) even if
+# its checks passed.
+cleanup() {
+  local rc=0
+  stop_all || rc=1
   wait 2>/dev/null || true
   for step in "${extra_cleanup[@]}"; do eval "$step" || true; done
   rm -rf "$tmp"
@@ -56,17 +65,6 @@ start() {
   shift
   lab_start "$name" - -- "$@"
   pids+=("$(lab_pid "$name")")
-}
-
-# stop_all: stops every process started so far, as the cleanup does (returns 1 if one had to be
-# killed); their names may then be started again.
-stop_all() {
-  local rc=0 pid
-  lab__stop_sessions || rc=1
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
-  pids=()
-  return "$rc"
 }
 
 # server_port HOST: waits up to 10 s for netmc-server (log $tmp/server.log) to listen.
