@@ -5,6 +5,7 @@
 #include <sched.h>
 #include <sys/mman.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <sys/prctl.h>
 #include <unistd.h>
 
@@ -105,6 +106,13 @@ SchedulingOutcome apply_process_scheduling(const RealtimeScheduling& options) {
   }
   return outcome;
 }
+
+bool leave_realtime_scheduling() {
+  const sched_param param{};
+  return ::sched_setscheduler(0, SCHED_OTHER, &param) == 0;
+}
+
+void name_this_thread(const std::string& name) { ::pthread_setname_np(::pthread_self(), name.substr(0, 15).c_str()); }
 
 void tighten_timer_slack() { ::prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL); }
 

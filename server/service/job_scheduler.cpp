@@ -8,6 +8,7 @@
 #include <chrono>
 
 #include "server/job/job_builder.hpp"
+#include "server/realtime/realtime_scheduling.hpp"
 #include "server/service/error_response.hpp"
 #include "server/service/job_admission.hpp"
 
@@ -73,6 +74,10 @@ bool JobScheduler::drop_if_queued(const std::shared_ptr<Job>& job) {
 }
 
 void JobScheduler::validate() {
+  // Checking a client's spec can take long (a delay trace of 500 000 samples): it runs on the
+  // normal scheduler, never against a running job's threads.
+  realtime::leave_realtime_scheduling();
+  realtime::name_this_thread("validate");
   std::unique_lock lock(registry_.mutex());
   while (true) {
     wake_.wait(lock, [this] { return stopping_ || !submissions_.empty(); });
@@ -196,6 +201,7 @@ void JobScheduler::end_queued(Job& job, const std::string& reason) {
 }
 
 void JobScheduler::schedule() {
+  realtime::name_this_thread("schedule");
   std::unique_lock lock(registry_.mutex());
   while (true) {
     for (auto& thread : finished_) thread.join();
@@ -216,6 +222,7 @@ void JobScheduler::schedule() {
                    running_.size() + 1,
                    queue_.size());
       running_.emplace(job->id, std::thread([this, job] {
+        realtime::name_this_thread(fmt::format("job {}", job->id));
         executor_.run(job);
         finish(job);
       }));

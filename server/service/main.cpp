@@ -294,6 +294,11 @@ int main(int argc, char** argv) {
                  listen_address, server.port(),
                  tls ? netmc::management::describe_server_tls(*tls) : std::string("plain TCP, no TLS"), dds.domain_id, context.describe_transport(), context.identity(),
                  netmc::dds::time_base_name(time_base), scheduling_outcome.describe());
+    // This thread serves management clients and browsers: their work, however much they ask,
+    // must not hold a CPU against the job threads and DDS threads at the same SCHED_FIFO priority.
+    if (scheduling.fifo_priority > 0 && !netmc::realtime::leave_realtime_scheduling()) {
+      spdlog::warn("the management and console thread could not leave SCHED_FIFO: their work competes with the loops");
+    }
     io.run();
     return 0;
   } catch (const std::invalid_argument& e) {

@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <stdexcept>
+#include <thread>
 
 #include "server/realtime/realtime_scheduling.hpp"
 
@@ -73,6 +74,25 @@ TEST(Scheduling, ARefusedRequestFallsBackAndSaysSo) {
               const SchedulingOutcome outcome = apply_process_scheduling({50, {}, false, -1});
               if (!outcome.fallbacks.empty()) return ::sched_getscheduler(0) == SCHED_OTHER ? 0 : 1;
               return ::sched_getscheduler(0) == SCHED_FIFO ? 3 : 1;  // permitted after all
+            }),
+            0);
+}
+
+TEST(Scheduling, AServingThreadLeavesTheRealtimeScheduler) {
+  // Under SCHED_FIFO (root here; without the privilege there is nothing to leave): the thread
+  // that leaves runs, and makes threads, on the normal scheduler; the others keep SCHED_FIFO.
+  EXPECT_EQ(in_child([] {
+              if (!apply_process_scheduling({50, {}, false, -1}).fallbacks.empty()) return 0;
+              int serving = -1, made_by_serving = -1, loop = -1;
+              std::thread server_thread([&] {
+                if (!leave_realtime_scheduling()) return;
+                serving = ::sched_getscheduler(0);
+                std::thread([&] { made_by_serving = ::sched_getscheduler(0); }).join();
+              });
+              server_thread.join();
+              std::thread([&] { loop = ::sched_getscheduler(0); }).join();
+              const bool kept = ::sched_getscheduler(0) == SCHED_FIFO && loop == SCHED_FIFO;
+              return serving == SCHED_OTHER && made_by_serving == SCHED_OTHER && kept ? 0 : 1;
             }),
             0);
 }
