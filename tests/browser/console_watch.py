@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Keeps the console open in headless Chromium while a job runs elsewhere (console_browser.sh's
-miss-rate comparison): opens --url, touches --ready once the page is connected, follows the live
-job until --stop appears (or --seconds pass), then writes the most points its contour plot held
-to --points and fails on any browser console error."""
+miss-rate comparison): opens --url, touches --ready once the page is connected and the browser
+has settled, follows the live job until --stop appears (or --seconds pass), then writes the most
+points its contour plot held to --points and fails on any browser console error."""
 import argparse
 import os
 import sys
@@ -19,6 +19,7 @@ def main():
     parser.add_argument('--stop', required=True)
     parser.add_argument('--points', required=True)
     parser.add_argument('--insecure', action='store_true')
+    parser.add_argument('--settle', type=float, default=2, help='seconds between the page listing the nodes and --ready')
     args = parser.parse_args()
     driver = make_driver(args)
     try:
@@ -30,6 +31,9 @@ def main():
                 print('the page did not list the nodes')
                 return 1
             time.sleep(0.2)
+        # The browser's own start-up (its processes loading, the page's scripts compiling) over:
+        # what is compared is a console left open, not a browser starting.
+        time.sleep(args.settle)
         open(args.ready, 'w').close()
         most = 0
         end = time.time() + args.seconds
