@@ -152,8 +152,8 @@ void LockstepAxisNode::refuse_start(const netmc::dds::JobControl& control, const
 
 void LockstepAxisNode::settle_starts() {
   if (starts_.empty()) return;
-  const auto settled = starts_.settle([this](const netmc::dds::JobControl& begin) { return link_.linked_to_server(begin); },
-                                      std::chrono::steady_clock::now());
+  const auto linked = [this](const netmc::dds::JobControl& begin) { return link_.linked_to_server(begin); };
+  const auto settled = starts_.settle(linked, std::chrono::steady_clock::now());
   for (const auto& start : settled) {
     if (start.linked) {
       handle(start.begin);

@@ -1,9 +1,9 @@
 #pragma once
 // Jobs whose start waits for their server. A node starts an axis's job only once it and the job's
 // server are matched both ways (AxisNodeLink::linked_to_server); that wait is looked at by the
-// node's loop on each pass, never slept in, so a
-// participant that begins a job and never reads (forged, or a server that died) holds up nothing
-// but the axis it named: the node's other axes keep sampling and its watchdog keeps watching.
+// node's loop on each pass, never slept in, so a participant that begins a job and never reads
+// (forged, or a server that died) holds up nothing but the axis it named: the node's other axes
+// keep sampling and its watchdog keeps watching.
 // The axis's later job control waits behind its start, in order.
 
 #include <chrono>
@@ -28,8 +28,8 @@ class PendingJobStarts {
   // for one axis cannot grow the node).
   static constexpr std::size_t kMaxHeldBack = 32;
 
-  // The start `begin` waits until it is linked to its server. Only for an axis that does not wait yet: a
-  // waiting axis's control is held back (hold_back), its start included.
+  // The start `begin` waits until it is linked to its server. Only for an axis that does not wait
+  // yet: a waiting axis's control is held back (hold_back), its start included.
   void wait(const netmc::dds::JobControl& begin, Clock::time_point now);
   bool waiting(const std::string& axis) const { return waiting_.count(axis) > 0; }
   bool empty() const { return waiting_.empty(); }

@@ -267,8 +267,8 @@ void RealtimeAxisNode::refuse_start(OwnedAxis& axis, const netmc::dds::JobContro
 
 void RealtimeAxisNode::settle_starts() {
   if (starts_.empty()) return;
-  const auto settled = starts_.settle([this](const netmc::dds::JobControl& begin) { return link_.linked_to_server(begin); },
-                                      Clock::now());
+  const auto linked = [this](const netmc::dds::JobControl& begin) { return link_.linked_to_server(begin); };
+  const auto settled = starts_.settle(linked, Clock::now());
   for (const auto& start : settled) {
     if (start.linked) {
       handle(start.begin);
