@@ -287,8 +287,9 @@ int hijack(const Options& options) {
   const std::string partition = nd::partition_of_axis(options.axis);
   nd::SampleReader<nd::NodeStatus> statuses(
       context.reader(context.topic<nd::NodeStatusPubSubType>(nd::kNodeStatusTopic), nd::Delivery::status));
-  nd::SampleReader<nd::JobControl> controls(
-      context.reader(context.topic<nd::JobControlPubSubType>(nd::kJobControlTopic), nd::Delivery::control));
+  auto* control_reader =
+      context.reader(context.topic<nd::JobControlPubSubType>(nd::kJobControlTopic), nd::Delivery::control);
+  nd::SampleReader<nd::JobControl> controls(control_reader);
   auto* control = context.writer(context.topic<nd::JobControlPubSubType>(nd::kJobControlTopic), nd::Delivery::control);
   auto* status_writer =
       context.writer(context.topic<nd::NodeStatusPubSubType>(nd::kNodeStatusTopic), nd::Delivery::status);
@@ -318,6 +319,20 @@ int hijack(const Options& options) {
   const auto node = find_node(statuses, options.axis, Clock::now() + std::chrono::seconds(10));
   if (!node) {
     fmt::print("rogue: no node hosts axis {}\n", options.axis);
+    return 1;
+  }
+  // Job controls are volatile: a BEGIN_ITERATION sent before this reader matched the server's
+  // writer never arrives, and a short lockstep job can end before its new setpoint writer is
+  // discovered. So the rogue waits until it hears a writer of job controls besides its own
+  // (only a server writes them); on a loaded machine discovery can take seconds.
+  const auto discovery_deadline = Clock::now() + std::chrono::seconds(10);
+  eprosima::fastdds::dds::SubscriptionMatchedStatus matched;
+  while (control_reader->get_subscription_matched_status(matched) == ReturnCode_t::RETCODE_OK &&
+         matched.current_count < 2 && Clock::now() < discovery_deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (matched.current_count < 2) {
+    fmt::print("rogue: no server's job-control writer was discovered within 10 s\n");
     return 1;
   }
   fmt::print("rogue: waiting for a job on axis {} (node {}, participant {})\n", options.axis, node->node(),

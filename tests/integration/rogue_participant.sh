@@ -56,6 +56,14 @@ start rogue-x "$rogue" hijack --axis x --seconds 120 --domain "$domain"
 rogue_pid=${pids[-1]}
 for _ in $(seq 100); do grep -q "waiting for a job" "$tmp/rogue-x.log" && break; sleep 0.1; done
 "$netmc" run --server "127.0.0.1:$port" --quiet "${study[@]}" --json "$tmp/run.json" >/dev/null
+# The rogue forges node statuses every 100 ms, alternating two kinds, for as long as it runs; the
+# job alone can be shorter than the server's discovery of the rogue's status writer on a loaded
+# machine, so the rogue stays until the server has logged both kinds (or 10 s).
+for _ in $(seq 100); do
+  grep -q "ignored a status of node hx: names participant" "$tmp/server.log" &&
+    grep -q "ignored a status of node hx: participant .* claims the name" "$tmp/server.log" && break
+  sleep 0.1
+done
 kill -TERM "$rogue_pid"
 wait "$rogue_pid" || true
 cat "$tmp/rogue-x.log"
