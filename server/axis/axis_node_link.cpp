@@ -29,16 +29,19 @@ AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
           context.topic<netmc::dds::NodeStatusPubSubType>(dds::kNodeStatusTopic), dds::Delivery::status)),
       reply_writer_(context.writer(context.topic<netmc::dds::ClockReplyPubSubType>(dds::kClockReplyTopic),
                                    dds::Delivery::stream)),
-      // Setpoints in the partitions of this node's axes only: at thousands of cycles a second, a
-      // node that were sent every axis's would spend its CPU dropping them. (Fast DDS 2.9's
-      // content filters cost more: a dynamic type is built per sample.) Job control is rare and
-      // goes to every node, which drops the others' on the DDS thread.
-      control_(context.reader(context.topic<netmc::dds::JobControlPubSubType>(dds::kJobControlTopic),
-                              dds::Delivery::control)),
       probes_(context.reader(context.topic<netmc::dds::ClockProbePubSubType>(dds::kClockProbeTopic),
                              dds::Delivery::stream)),
+      // Job control is rare and goes to every node, which drops the others' axes' on the DDS
+      // thread. At most a job start per axis waits at a time; 64 as the reader's history had.
+      control_intake_(
+          [this](const eprosima::fastrtps::rtps::GuidPrefix_t& sender, const netmc::dds::JobControl& control) {
+            return hosts(control.axis()) && authentic(sender, control.server(), "job control", control.axis());
+          },
+          64),
+      // A 10 kHz job's 400 ms of setpoints.
       setpoint_intake_([this](const eprosima::fastrtps::rtps::GuidPrefix_t& sender,
-                              const netmc::dds::Setpoint& setpoint) { return from_holder_of_job(sender, setpoint); }) {
+                              const netmc::dds::Setpoint& setpoint) { return from_holder_of_job(sender, setpoint); },
+                       4096) {
   auto* feedback = context.topic<netmc::dds::FeedbackPubSubType>(
       realtime(config_) ? dds::kRealtimeFeedbackTopic : dds::kLockstepFeedbackTopic);
   auto* events = context.topic<netmc::dds::AxisEventPubSubType>(dds::kAxisEventTopic);
@@ -56,6 +59,11 @@ AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
                                                        drive::statusword::remote),
                             0};
   }
+  control_reader_ = context.reader(context.topic<netmc::dds::JobControlPubSubType>(dds::kJobControlTopic),
+                                   dds::Delivery::control, {}, &control_intake_);
+  // Setpoints in the partitions of this node's axes only: at thousands of cycles a second, a
+  // node that were sent every axis's would spend its CPU dropping them. (Fast DDS 2.9's content
+  // filters cost more: a dynamic type is built per sample.)
   setpoint_reader_ = context.reader(
       context.topic<netmc::dds::SetpointPubSubType>(realtime(config_) ? dds::kRealtimeSetpointTopic
                                                                       : dds::kLockstepSetpointTopic),
@@ -65,7 +73,9 @@ AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
 }
 
 AxisNodeLink::~AxisNodeLink() {
-  context_.remove_reader(setpoint_reader_);  // no more calls into setpoint_intake_
+  // No more calls into the intakes.
+  context_.remove_reader(setpoint_reader_);
+  context_.remove_reader(control_reader_);
   stop_.store(true);
   probe_thread_.join();
   if (refused_) return;  // it never served
@@ -157,10 +167,10 @@ bool AxisNodeLink::obeys(const eprosima::fastrtps::rtps::GuidPrefix_t& sender) {
 }
 
 std::optional<netmc::dds::JobControl> AxisNodeLink::take_control() {
-  while (auto control = control_.try_take()) {
-    if (!hosts(control->axis())) continue;  // another node's: not looked at
-    if (!authentic(control_.last_sender(), control->server(), "job control", control->axis())) continue;
-    if (obeys(control_.last_sender())) return control;
+  // --server-name's verdict here, not on the receive thread: it needs the sender's discovery
+  // data, which may lag its first sample.
+  while (auto control = control_intake_.take()) {
+    if (obeys(control_intake_.last_sender())) return control;
   }
   return std::nullopt;
 }

@@ -20,7 +20,7 @@
 #include "server/dds/dds_context.hpp"
 #include "server/dds/time_base.hpp"
 #include "server/axis/axis_drives.hpp"
-#include "server/axis/setpoint_intake.hpp"
+#include "server/axis/sample_intake.hpp"
 #include "server/drive/cia402.hpp"
 #include "server/sim/axis_endpoint.hpp"
 
@@ -90,17 +90,20 @@ class AxisNodeLink {
 
   const AxisNodeConfig& config() const { return config_; }
   bool hosts(const std::string& axis) const;
-  dds::SampleReader<netmc::dds::JobControl>& control() { return control_; }
+  // Triggered while job controls wait for take_control: for the loop's WaitSet.
+  eprosima::fastdds::dds::GuardCondition& control_arrived() { return control_intake_.arrived(); }
   // Triggered while setpoints wait for take_setpoint: for the loop's WaitSet.
   eprosima::fastdds::dds::GuardCondition& setpoint_arrived() { return setpoint_intake_.arrived(); }
-  // The next job control that was sent by the participant its `server` field names. Others are
-  // forgeries (a participant speaking as a server it is not): dropped, counted, and each forging
+  // The next job control for an axis of this node that was sent by the participant its `server`
+  // field names, from a server this node obeys. The others are dropped on Fast DDS's receive
+  // thread as they arrive (SampleIntake), so that a flood of them cannot push a server's own out:
+  // forgeries (a participant speaking as a server it is not) are counted, and each forging
   // participant logged once, so that no foreign sample holds, moves or makes stale an axis of a
   // server's job.
   std::optional<netmc::dds::JobControl> take_control();
   // The next setpoint of the server that holds its axis, for the job it holds it for. The others
   // (forged, of another job or of no job here) are dropped on Fast DDS's receive thread as they
-  // arrive (SetpointIntake): they neither displace the job's own nor wait for the node's loop.
+  // arrive (SampleIntake): they neither displace the job's own nor wait for the node's loop.
   std::optional<netmc::dds::Setpoint> take_setpoint() { return setpoint_intake_.take(); }
   void publish(netmc::dds::Feedback& feedback);
   void publish_event(netmc::dds::AxisEvent& event);
@@ -165,7 +168,7 @@ class AxisNodeLink {
     eprosima::fastdds::dds::DataWriter* events = nullptr;
   };
   bool held(const Hold& hold, std::chrono::steady_clock::time_point now) const;
-  // SetpointIntake's filter: authentic, and of the holder of its axis for the job it holds.
+  // The setpoint intake's filter: authentic, and of the holder of its axis for the job it holds.
   bool from_holder_of_job(const eprosima::fastrtps::rtps::GuidPrefix_t& sender, const netmc::dds::Setpoint& setpoint);
   const AxisWriters& writers_of(const std::string& axis) const;
 
@@ -174,10 +177,11 @@ class AxisNodeLink {
   std::map<std::string, AxisWriters> writers_;
   eprosima::fastdds::dds::DataWriter* status_writer_;
   eprosima::fastdds::dds::DataWriter* reply_writer_;
-  dds::SampleReader<netmc::dds::JobControl> control_;
   dds::SampleReader<netmc::dds::ClockProbe> probes_;
-  SetpointIntake setpoint_intake_;
-  // Made in the constructor's body, once everything its filter reads exists.
+  SampleIntake<netmc::dds::JobControl> control_intake_;
+  SampleIntake<netmc::dds::Setpoint> setpoint_intake_;
+  // Made in the constructor's body, once everything their filters read exists.
+  eprosima::fastdds::dds::DataReader* control_reader_ = nullptr;
   eprosima::fastdds::dds::DataReader* setpoint_reader_ = nullptr;
 
   // True if --server-name lets the participant `sender` command this node; logs a refusal once

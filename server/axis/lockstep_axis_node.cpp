@@ -15,7 +15,7 @@ LockstepAxisNode::LockstepAxisNode(dds::DdsContext& context, AxisNodeConfig conf
 void LockstepAxisNode::serve(const std::atomic<bool>& stop) {
   link_.publish_status(netmc::dds::NODE_IDLE, "ready");
   eprosima::fastdds::dds::WaitSet waitset;
-  waitset.attach_condition(link_.control().condition());
+  waitset.attach_condition(link_.control_arrived());
   waitset.attach_condition(link_.setpoint_arrived());
   auto last_status = std::chrono::steady_clock::now();
   while (!stop.load()) {

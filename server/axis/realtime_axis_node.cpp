@@ -48,7 +48,7 @@ RealtimeAxisNode::RealtimeAxisNode(dds::DdsContext& context, AxisNodeConfig conf
 void RealtimeAxisNode::serve(const std::atomic<bool>& stop) {
   realtime::tighten_timer_slack();
   eprosima::fastdds::dds::WaitSet waitset;
-  waitset.attach_condition(link_.control().condition());
+  waitset.attach_condition(link_.control_arrived());
   waitset.attach_condition(link_.setpoint_arrived());
   auto next_status = Clock::now();
   while (!stop.load()) {
