@@ -385,8 +385,14 @@ bool AxisNodeLink::server_reads(const netmc::dds::JobControl& begin) const {
          context_.matches_participants(writers.events, {begin.server()});
 }
 
-std::string AxisNodeLink::server_does_not_read(const netmc::dds::JobControl& begin) {
-  return "server " + begin.server().substr(0, 32) + " does not read this node's feedback";
+bool AxisNodeLink::linked_to_server(const netmc::dds::JobControl& begin) const {
+  return server_reads(begin) && context_.matches_participants(setpoint_reader_, {begin.server()});
+}
+
+std::string AxisNodeLink::why_not_linked(const netmc::dds::JobControl& begin) const {
+  const std::string server = begin.server().substr(0, 32);
+  if (!server_reads(begin)) return "server " + server + " does not read this node's feedback";
+  return "this node does not hear the setpoints of server " + server;
 }
 
 JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
@@ -397,8 +403,9 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
                                "); its operator resets it: netmc reset " + config_.node + " (or SIGUSR1 on its host)");
     }
   }
-  // The server must read this node's feedback before the first sample leaves.
-  if (!server_reads(begin)) throw std::runtime_error(server_does_not_read(begin));
+  // The server must read this node's feedback before the first sample leaves, and its setpoints
+  // must reach this node before the first one is due.
+  if (!linked_to_server(begin)) throw std::runtime_error(why_not_linked(begin));
   netmc::v1::JobSpec spec;
   if (!spec.ParseFromArray(begin.job_spec().data(), static_cast<int>(begin.job_spec().size()))) {
     throw std::invalid_argument("malformed job spec");

@@ -119,17 +119,22 @@ class AxisNodeLink {
   bool from_holder(const std::string& axis, const std::string& server, std::uint64_t job_id);
   void release(const std::string& axis, const std::string& server, std::uint64_t job_id);
 
-  // Whether the server of `begin` reads the axis's feedback and events (by identity: a dead
-  // server's reader, still counted by DDS, does not do). Looked at, never waited for: the node's
-  // loop keeps the start pending (PendingJobStarts) until it does.
-  bool server_reads(const netmc::dds::JobControl& begin) const;
+  // Whether the node and the server of `begin` are matched both ways: the server reads the axis's
+  // feedback and events, and this node's setpoint reader hears that server's setpoint writer (by
+  // identity: a dead server's reader, still counted by DDS, does not do). A node that began before
+  // it heard the writer would drop the job's first setpoints (a best-effort reader takes nothing
+  // from a writer it has not matched: one lost discovery datagram delays that by seconds) and its
+  // watchdog would stop the axis. Looked at, never waited for: the node's loop keeps the start
+  // pending (PendingJobStarts) until it holds.
+  bool linked_to_server(const netmc::dds::JobControl& begin) const;
+  bool server_reads(const netmc::dds::JobControl& begin) const;  // the first half
   // From the message that carries the job's spec (BEGIN_ITERATION of iteration 1 in lockstep,
-  // PREPARE_ITERATION in realtime), once its server reads: the job's axis, built from its spec,
-  // on the axis's drive. Throws for an axis in fault (named with its reason), a server that does
-  // not read, or a spec this node cannot run.
+  // PREPARE_ITERATION in realtime), once linked to its server: the job's axis, built from its
+  // spec, on the axis's drive. Throws for an axis in fault (named with its reason), a server not
+  // linked, or a spec this node cannot run.
   JobAxis start_job(const netmc::dds::JobControl& begin);
-  // Why a start given up after PendingJobStarts::kServerReadTimeout failed.
-  static std::string server_does_not_read(const netmc::dds::JobControl& begin);
+  // Why the start of `begin` is not linked (for one given up after PendingJobStarts::kLinkTimeout).
+  std::string why_not_linked(const netmc::dds::JobControl& begin) const;
 
   // Faults latch per axis until the operator resets them: `netmc reset` through a server this
   // node obeys, SIGUSR1 to netmc-axis, or a restart. report_fault latches the endpoint's fault

@@ -98,7 +98,7 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
   }
   JobAxis& axis = owned->second;
   if (control.kind() == netmc::dds::CONTROL_BEGIN_ITERATION && !control.job_spec().empty()) {
-    if (!link_.server_reads(control)) {  // handled again once it does
+    if (!link_.linked_to_server(control)) {  // handled again once it does
       starts_.wait(control, std::chrono::steady_clock::now());
       return;
     }
@@ -152,13 +152,13 @@ void LockstepAxisNode::refuse_start(const netmc::dds::JobControl& control, const
 
 void LockstepAxisNode::settle_starts() {
   if (starts_.empty()) return;
-  const auto settled = starts_.settle([this](const netmc::dds::JobControl& begin) { return link_.server_reads(begin); },
-                                      std::chrono::steady_clock::now());
+  const auto linked = [this](const netmc::dds::JobControl& begin) { return link_.linked_to_server(begin); };
+  const auto settled = starts_.settle(linked, std::chrono::steady_clock::now());
   for (const auto& start : settled) {
-    if (start.server_reads) {
+    if (start.linked) {
       handle(start.begin);
     } else {
-      refuse_start(start.begin, AxisNodeLink::server_does_not_read(start.begin));
+      refuse_start(start.begin, link_.why_not_linked(start.begin));
     }
     for (const auto& control : start.held_back) handle(control);
   }

@@ -3,7 +3,7 @@
 namespace netmc::axis {
 
 void PendingJobStarts::wait(const netmc::dds::JobControl& begin, Clock::time_point now) {
-  waiting_.emplace(begin.axis(), Waiting{begin, now + kServerReadTimeout, {}});
+  waiting_.emplace(begin.axis(), Waiting{begin, now + kLinkTimeout, {}});
 }
 
 void PendingJobStarts::hold_back(const netmc::dds::JobControl& control) {
@@ -15,15 +15,15 @@ void PendingJobStarts::hold_back(const netmc::dds::JobControl& control) {
 }
 
 std::vector<PendingJobStarts::Settled> PendingJobStarts::settle(
-    const std::function<bool(const netmc::dds::JobControl&)>& server_reads, Clock::time_point now) {
+    const std::function<bool(const netmc::dds::JobControl&)>& linked, Clock::time_point now) {
   std::vector<Settled> settled;
   for (auto it = waiting_.begin(); it != waiting_.end();) {
-    const bool reads = server_reads(it->second.begin);
-    if (!reads && now < it->second.deadline) {
+    const bool is_linked = linked(it->second.begin);
+    if (!is_linked && now < it->second.deadline) {
       ++it;
       continue;
     }
-    settled.push_back({std::move(it->second.begin), reads, std::move(it->second.held_back)});
+    settled.push_back({std::move(it->second.begin), is_linked, std::move(it->second.held_back)});
     it = waiting_.erase(it);
   }
   return settled;

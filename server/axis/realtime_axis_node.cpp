@@ -241,7 +241,7 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
 }
 
 bool RealtimeAxisNode::start_job(OwnedAxis& axis, const netmc::dds::JobControl& control) {
-  if (!link_.server_reads(control)) {
+  if (!link_.linked_to_server(control)) {
     starts_.wait(control, Clock::now());
     return false;
   }
@@ -267,13 +267,13 @@ void RealtimeAxisNode::refuse_start(OwnedAxis& axis, const netmc::dds::JobContro
 
 void RealtimeAxisNode::settle_starts() {
   if (starts_.empty()) return;
-  const auto settled = starts_.settle([this](const netmc::dds::JobControl& begin) { return link_.server_reads(begin); },
-                                      Clock::now());
+  const auto linked = [this](const netmc::dds::JobControl& begin) { return link_.linked_to_server(begin); };
+  const auto settled = starts_.settle(linked, Clock::now());
   for (const auto& start : settled) {
-    if (start.server_reads) {
+    if (start.linked) {
       handle(start.begin);
     } else {
-      refuse_start(axes_.at(start.begin.axis()), start.begin, AxisNodeLink::server_does_not_read(start.begin));
+      refuse_start(axes_.at(start.begin.axis()), start.begin, link_.why_not_linked(start.begin));
     }
     for (const auto& control : start.held_back) handle(control);
   }

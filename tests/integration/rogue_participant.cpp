@@ -54,6 +54,7 @@ struct Options {
   double every_s = 1.0;
   std::size_t count = 300000;
   bool control = false;
+  bool reading_feedback = false;
 };
 
 // The status of the node hosting `axis` (its participant, plant, clock), once it is discovered.
@@ -182,6 +183,18 @@ int begin_without_reader(const Options& options) {
     fmt::print("rogue: no node hosts axis {}\n", options.axis);
     return 1;
   }
+  // --reading-feedback: the axis's feedback and events read, but no setpoint writer: a server
+  // whose setpoints the node would never hear.
+  std::vector<eprosima::fastdds::dds::DataReader*> readers;
+  if (options.reading_feedback) {
+    const bool realtime = node->clock() == "realtime";
+    const std::string partition = nd::partition_of_axis(options.axis);
+    readers.push_back(context.reader(
+        context.topic<nd::FeedbackPubSubType>(realtime ? nd::kRealtimeFeedbackTopic : nd::kLockstepFeedbackTopic),
+        realtime ? nd::Delivery::stream : nd::Delivery::exchange, {partition}));
+    readers.push_back(context.reader(context.topic<nd::AxisEventPubSubType>(nd::kAxisEventTopic),
+                                     nd::Delivery::control, {partition}));
+  }
   if (!context.wait_for_participants(control, {node->participant()}, std::chrono::seconds(10))) {
     fmt::print("rogue: node {} does not read our job control\n", node->node());
     return 1;
@@ -193,8 +206,8 @@ int begin_without_reader(const Options& options) {
   begin.kind(nd::CONTROL_BEGIN_ITERATION);
   begin.start_position_m(0.0);
   begin.job_spec(rogue_job_spec(*node, options.axis, node->clock()));
-  fmt::print("rogue: sending BEGIN_ITERATION to axis {} (node {}) every {} s, reading nothing\n", options.axis,
-             node->node(), options.every_s);
+  fmt::print("rogue: sending BEGIN_ITERATION to axis {} (node {}) every {} s, {}\n", options.axis, node->node(),
+             options.every_s, options.reading_feedback ? "reading its feedback, writing no setpoints" : "reading nothing");
   std::fflush(stdout);
   std::size_t sent = 0;
   const auto end = Clock::now() + std::chrono::milliseconds(static_cast<long>(options.seconds * 1e3));
@@ -474,6 +487,8 @@ int main(int argc, char** argv) {
   drive_command->add_flag("--nan", options.nan, "Send NaN commands");
   app.get_subcommand("begin")->add_option("--every", options.every_s, "Seconds between two begins")
       ->check(CLI::Range(0.001, 60.0));
+  app.get_subcommand("begin")->add_flag("--reading-feedback", options.reading_feedback,
+                                        "Read the axis's feedback and events (but write no setpoints)");
   app.get_subcommand("flood")->add_option("--count", options.count, "Setpoints to send")
       ->check(CLI::Range(1, 100000000));
   app.get_subcommand("flood")->add_flag("--control", options.control,

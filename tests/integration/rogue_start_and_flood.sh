@@ -8,6 +8,10 @@
 #      deadline misses stay under a generous 50 % (580 of 6002 seen with a compile beside it),
 #      e_max is within 0.5-2 times netmc sim's, and the forged jobs are refused. (Before, each
 #      begin stopped the node for 5 s: the watchdog quick-stopped px and py and the job failed.)
+#   1b. begin --reading-feedback: the same, once, to px (its job over), from a participant that
+#      reads px's feedback and events but writes no setpoints: the node refuses the start, naming
+#      the setpoints it does not hear, and takes no quick stop (before, it started the job and its
+#      watchdog quick-stopped px).
 #   2. flood: 300 k random setpoints (random server, job, iteration, cycle, command) to the
 #      partitions of x and y while paper 001's adrc+ilccc lockstep job (2 iterations) runs on
 #      them: the job's JSON equals netmc sim's byte for byte, and the node's resident memory
@@ -58,6 +62,25 @@ awk -v run="$(value e_max_m "$tmp/rt.json")" -v sim="$(value e_max_m "$tmp/rt-si
   printf "realtime job beside %d forged begins (%d refused by its end, the others waiting behind): e_max %.4f mm (netmc sim %.4f mm), %d deadline misses of 6002 cycles, %d watchdog quick stops, node kept\n", sent, refused, run * 1e3, sim * 1e3, misses, quick_stops
   exit (run <= 2 * sim && run >= 0.5 * sim) ? 0 : 1
 }'
+
+# 1b. A begin from a participant that reads px's feedback and events but writes no setpoints (as a
+# server does whose setpoint writer the node has not yet matched: a lost discovery datagram). The
+# node must not start what it cannot hear: its watchdog would quick-stop px and latch a fault. It
+# refuses the start after its 5 s wait, naming the setpoints, and px stays out of fault. (px: the
+# job of 1. is over; pz's starts still wait behind 1.'s forged begins.)
+quick_stops_before=$(grep -c "quick stop" "$tmp/pair.log" || true)
+start rogue-reader "$rogue" begin --reading-feedback --axis px --every 30 --seconds 8 --domain "$domain"
+reader_pid=${pids[-1]}
+for _ in $(seq 150); do grep -q "does not hear the setpoints of server" "$tmp/pair.log" && break; sleep 0.1; done
+kill -TERM "$reader_pid"
+wait "$reader_pid" || true
+cat "$tmp/rogue-reader.log"
+grep -q "reading its feedback, writing no setpoints" "$tmp/rogue-reader.log" ||
+  { echo "FAIL: the reading rogue did not begin"; exit 1; }
+grep "does not hear the setpoints of server" "$tmp/pair.log" ||
+  { echo "FAIL: node pair did not refuse a job whose setpoints it cannot hear"; tail -n 20 "$tmp/pair.log"; exit 1; }
+[ "$(grep -c "quick stop" "$tmp/pair.log" || true)" == "$quick_stops_before" ] ||
+  { echo "FAIL: the unheard job quick-stopped an axis"; tail -n 20 "$tmp/pair.log"; exit 1; }
 
 # 2. Floods of random setpoints, then of random job controls, each during a lockstep job.
 rss_kib() { sed -n 's/^VmRSS:[[:space:]]*\([0-9]*\) kB/\1/p' "/proc/$1/status"; }

@@ -26,13 +26,13 @@ TEST(PendingJobStarts, AStartSettlesOnceItsServerReadsAndItsAxisLaterControlFoll
   EXPECT_FALSE(starts.waiting("y"));  // the node's other axes go on
   starts.hold_back(control("x", 1, netmc::dds::CONTROL_END_ITERATION));
   starts.hold_back(control("x", 1, netmc::dds::CONTROL_END_JOB));
-  bool reads = false;
-  const auto server_reads = [&](const netmc::dds::JobControl&) { return reads; };
-  EXPECT_TRUE(starts.settle(server_reads, t0 + std::chrono::seconds(1)).empty());
-  reads = true;
-  const auto settled = starts.settle(server_reads, t0 + std::chrono::seconds(1));
+  bool linked = false;
+  const auto is_linked = [&](const netmc::dds::JobControl&) { return linked; };
+  EXPECT_TRUE(starts.settle(is_linked, t0 + std::chrono::seconds(1)).empty());
+  linked = true;
+  const auto settled = starts.settle(is_linked, t0 + std::chrono::seconds(1));
   ASSERT_EQ(settled.size(), 1u);
-  EXPECT_TRUE(settled[0].server_reads);
+  EXPECT_TRUE(settled[0].linked);
   EXPECT_EQ(settled[0].begin.job_id(), 1u);
   ASSERT_EQ(settled[0].held_back.size(), 2u);
   EXPECT_EQ(settled[0].held_back[0].kind(), netmc::dds::CONTROL_END_ITERATION);
@@ -48,7 +48,7 @@ TEST(PendingJobStarts, AStartWhoseServerNeverReadsIsGivenUpAfterFiveSeconds) {
   EXPECT_TRUE(starts.settle(never, t0 + std::chrono::milliseconds(4999)).empty());
   const auto settled = starts.settle(never, t0 + std::chrono::milliseconds(5000));
   ASSERT_EQ(settled.size(), 1u);
-  EXPECT_FALSE(settled[0].server_reads);
+  EXPECT_FALSE(settled[0].linked);
   EXPECT_EQ(settled[0].begin.job_id(), 7u);
   EXPECT_FALSE(starts.waiting("x"));
 }
