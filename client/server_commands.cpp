@@ -93,6 +93,8 @@ RunOutcome follow_job(management::ManagementClient& client, std::uint64_t job_id
       if (!quiet) print_iteration(label, response->iteration());
     } else if (response->has_finished()) {
       const auto& finished = response->finished();
+      // An ended job cannot be cancelled: the token netmc submit saved for it is needed no more.
+      forget_job_token(server, job_id);
       if (finished.state() != "done") {
         throw std::runtime_error(fmt::format("job {} ({}) {}: {}", job_id, label, finished.state(), finished.error()));
       }

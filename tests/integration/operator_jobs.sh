@@ -103,6 +103,10 @@ cmp -s "$tmp/watch-live.json" "$tmp/watch-ended.json" ||
   { echo "FAIL: watching the ended job gave another result"; exit 1; }
 "$netmc" sim --quiet --controller adrc+ilccc --iterations 30 --duration 4s --json "$tmp/sim-30.json" >/dev/null
 same_json "$tmp/sim-30.json" "$tmp/watch-live.json" "netmc submit + watch (job 4, 30 iterations)"
+# The watch saw job 4 end: the cancel token its submit saved is gone (job 3's, never submitted, was
+# never there; the directory stays).
+[ -d "$XDG_STATE_HOME/netmc/jobs" ] && [ ! -e "$XDG_STATE_HOME/netmc/jobs/127.0.0.1_$port-job-4.token" ] ||
+  { echo "FAIL: the token of ended job 4 was kept:"; ls -la "$XDG_STATE_HOME/netmc/jobs"; exit 1; }
 # netmc submit keeps each job's cancel token (0600, in a 0700 directory): netmc cancel from
 # another connection finds it; without it, or with a wrong one, the cancel is refused.
 "$netmc" submit "${server[@]}" --quiet "${long[@]}" >"$tmp/submitted-long.txt"
