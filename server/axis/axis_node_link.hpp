@@ -127,7 +127,6 @@ class AxisNodeLink {
   // watchdog would stop the axis. Looked at, never waited for: the node's loop keeps the start
   // pending (PendingJobStarts) until it holds.
   bool linked_to_server(const netmc::dds::JobControl& begin) const;
-  bool server_reads(const netmc::dds::JobControl& begin) const;  // the first half
   // From the message that carries the job's spec (BEGIN_ITERATION of iteration 1 in lockstep,
   // PREPARE_ITERATION in realtime), once linked to its server: the job's axis, built from its
   // spec, on the axis's drive. Throws for an axis in fault (named with its reason), a server not
@@ -172,6 +171,8 @@ class AxisNodeLink {
     eprosima::fastdds::dds::DataWriter* feedback = nullptr;
     eprosima::fastdds::dds::DataWriter* events = nullptr;
   };
+  // linked_to_server's first half: the server of `begin` reads the axis's feedback and events.
+  bool server_reads(const netmc::dds::JobControl& begin) const;
   bool held(const Hold& hold, std::chrono::steady_clock::time_point now) const;
   // The setpoint intake's filter: authentic, and of the holder of its axis for the job it holds.
   bool from_holder_of_job(const eprosima::fastrtps::rtps::GuidPrefix_t& sender, const netmc::dds::Setpoint& setpoint);

@@ -290,6 +290,17 @@ bool wait_for_readers(DataWriter* writer, int count, std::chrono::milliseconds t
   return false;
 }
 
+bool wait_for_writers(DataReader* reader, int count, std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  SubscriptionMatchedStatus status;
+  while (std::chrono::steady_clock::now() < deadline) {
+    reader->get_subscription_matched_status(status);
+    if (status.current_count >= count) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
 std::chrono::system_clock::time_point received_at(const SampleInfo& info) {
   const auto& stamp = info.reception_timestamp;
   if (stamp.seconds() <= 0) return std::chrono::system_clock::now();

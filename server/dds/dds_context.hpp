@@ -204,6 +204,8 @@ class SampleReader {
 // Waits until `writer` has matched at least `count` readers (discovery), up to `timeout`.
 bool wait_for_readers(eprosima::fastdds::dds::DataWriter* writer, int count,
                       std::chrono::milliseconds timeout);
+// Waits until `reader` has matched at least `count` writers (discovery), up to `timeout`.
+bool wait_for_writers(eprosima::fastdds::dds::DataReader* reader, int count, std::chrono::milliseconds timeout);
 
 // A GUID prefix as 24 hex digits.
 std::string prefix_text(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix);

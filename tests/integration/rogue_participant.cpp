@@ -185,15 +185,14 @@ int begin_without_reader(const Options& options) {
   }
   // --reading-feedback: the axis's feedback and events read, but no setpoint writer: a server
   // whose setpoints the node would never hear.
-  std::vector<eprosima::fastdds::dds::DataReader*> readers;
+  // (The context keeps the readers; nothing is taken from them.)
   if (options.reading_feedback) {
     const bool realtime = node->clock() == "realtime";
     const std::string partition = nd::partition_of_axis(options.axis);
-    readers.push_back(context.reader(
+    context.reader(
         context.topic<nd::FeedbackPubSubType>(realtime ? nd::kRealtimeFeedbackTopic : nd::kLockstepFeedbackTopic),
-        realtime ? nd::Delivery::stream : nd::Delivery::exchange, {partition}));
-    readers.push_back(context.reader(context.topic<nd::AxisEventPubSubType>(nd::kAxisEventTopic),
-                                     nd::Delivery::control, {partition}));
+        realtime ? nd::Delivery::stream : nd::Delivery::exchange, {partition});
+    context.reader(context.topic<nd::AxisEventPubSubType>(nd::kAxisEventTopic), nd::Delivery::control, {partition});
   }
   if (!context.wait_for_participants(control, {node->participant()}, std::chrono::seconds(10))) {
     fmt::print("rogue: node {} does not read our job control\n", node->node());
@@ -338,13 +337,7 @@ int hijack(const Options& options) {
   // writer never arrives, and a short lockstep job can end before its new setpoint writer is
   // discovered. So the rogue waits until it hears a writer of job controls besides its own
   // (only a server writes them); on a loaded machine discovery can take seconds.
-  const auto discovery_deadline = Clock::now() + std::chrono::seconds(10);
-  eprosima::fastdds::dds::SubscriptionMatchedStatus matched;
-  while (control_reader->get_subscription_matched_status(matched) == ReturnCode_t::RETCODE_OK &&
-         matched.current_count < 2 && Clock::now() < discovery_deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  if (matched.current_count < 2) {
+  if (!nd::wait_for_writers(control_reader, 2, std::chrono::seconds(10))) {
     fmt::print("rogue: no server's job-control writer was discovered within 10 s\n");
     return 1;
   }
