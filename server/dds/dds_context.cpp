@@ -279,26 +279,39 @@ void write_checked(DataWriter* writer, void* sample) {
   }
 }
 
-bool wait_for_readers(DataWriter* writer, int count, std::chrono::milliseconds timeout) {
+namespace {
+
+// Polls `matched()` (the endpoints an endpoint has matched) until it reaches `count`.
+template <typename Matched>
+bool wait_until_matched(const Matched& matched, int count, std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
-  PublicationMatchedStatus status;
   while (std::chrono::steady_clock::now() < deadline) {
-    writer->get_publication_matched_status(status);
-    if (status.current_count >= count) return true;
+    if (matched() >= count) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return false;
 }
 
+}  // namespace
+
+bool wait_for_readers(DataWriter* writer, int count, std::chrono::milliseconds timeout) {
+  return wait_until_matched(
+      [writer] {
+        PublicationMatchedStatus status;
+        writer->get_publication_matched_status(status);
+        return status.current_count;
+      },
+      count, timeout);
+}
+
 bool wait_for_writers(DataReader* reader, int count, std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  SubscriptionMatchedStatus status;
-  while (std::chrono::steady_clock::now() < deadline) {
-    reader->get_subscription_matched_status(status);
-    if (status.current_count >= count) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return false;
+  return wait_until_matched(
+      [reader] {
+        SubscriptionMatchedStatus status;
+        reader->get_subscription_matched_status(status);
+        return status.current_count;
+      },
+      count, timeout);
 }
 
 std::chrono::system_clock::time_point received_at(const SampleInfo& info) {
