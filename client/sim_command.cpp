@@ -15,6 +15,7 @@
 #include "client/study_report.hpp"
 #include "client/study_runner.hpp"
 #include "server/job/controller_registry.hpp"
+#include "server/job/delay_compensators.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/job/plant_source.hpp"
 
@@ -30,6 +31,7 @@ std::function<int()> add_sim_command(CLI::App& app) {
     bool print_spec = false;
     bool list_presets = false;
     bool list_controllers = false;
+    bool list_compensators = false;
     std::string plant_parameters;
   };
   auto flags = std::make_shared<Flags>();
@@ -49,6 +51,9 @@ std::function<int()> add_sim_command(CLI::App& app) {
   sim->add_flag("--list-controllers", flags->list_controllers,
                 "Print every controller netmc runs (a Markdown table: names, role, gains flag, source, the plants "
                 "its defaults are tuned for) and run nothing");
+  sim->add_flag("--list-compensators", flags->list_compensators,
+                "Print every delay compensator --compensate takes (a Markdown table: name, what it does, what it "
+                "predicts with, source) and run nothing");
   sim->add_option("--plant-parameters", flags->plant_parameters,
                   "Print the parameters --plant NAME:KEY=VALUE (and a spec's plant_axes) can change, and run nothing")
       ->type_name("NAME");
@@ -58,6 +63,7 @@ std::function<int()> add_sim_command(CLI::App& app) {
                                                    #     e_sum, tau_histogram (.png and .svg)
   netmc sim --iterations 100 --curve               # learning curves
   netmc sim --controller adrc,adrc+pidccc --delay constant:4ms
+  netmc sim --controller adrc,adrc+ilccc --delay constant:20ms --compensate predictor
   netmc sim --preset thesis-ellipse
   netmc sim --spec job.json --json results.json --csv traces/
 
@@ -74,6 +80,10 @@ every run. Output files are written whole, after every run has finished.)");
     }
     if (flags->list_controllers) {
       fmt::print("{}", job::ControllerRegistry::global().markdown_table());
+      return 0;
+    }
+    if (flags->list_compensators) {
+      fmt::print("{}", job::delay_compensators_markdown_table());
       return 0;
     }
     if (flags->list_presets) {

@@ -8,6 +8,7 @@
 #include "client/spec_syntax.hpp"
 #include "client/spec_validation.hpp"
 #include "server/job/controller_registry.hpp"
+#include "server/job/delay_compensators.hpp"
 #include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
@@ -120,6 +121,13 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
       }
     }
     if (!f.clock.empty()) job.set_clock(f.clock);
+    if (!f.compensate.empty()) {
+      if (const auto compensation = job::parse_compensation(f.compensate, "--compensate")) {
+        *job.mutable_compensation() = *compensation;
+      } else {
+        job.clear_compensation();
+      }
+    }
     if (!f.axes.empty()) {
       try {
         job::rename_axes(job, split_list(f.axes));
@@ -170,7 +178,7 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     const bool overridden = changes_setup || !f.controllers.empty() || gains_given ||
                             !f.estimator.empty() || !f.deadline.empty() || !f.compute_delay.empty() ||
                             !f.command_limit.empty() || !f.divergence_limit.empty() || !f.clock.empty() ||
-                            !f.axes.empty() || !f.plant.empty();
+                            !f.axes.empty() || !f.plant.empty() || !f.compensate.empty();
     for (const auto& job : plan.jobs) {
       try {
         job::build_contour_job(job, job::check_without_files());  // files are opened where the job runs
@@ -229,6 +237,9 @@ void add_job_override_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--uplink-delay", flags.uplink_delay, "Sensor->controller delay (same forms as --delay)");
   app->add_option("--loss", flags.loss, "Setpoint loss: none | bernoulli:p=0.01 | gilbert:p_gb=..,p_bg=..[,good=..,bad=..]");
   app->add_option("--uplink-loss", flags.uplink_loss, "Feedback loss (same forms as --loss)");
+  app->add_option("--compensate", flags.compensate,
+                  "Delay compensation: " + job::delay_compensator_syntax() +
+                      " (netmc sim --list-compensators; default none, the loop as the papers run it)");
   app->add_option("--sample-period", flags.sample_period, "Sample period h, e.g. 5ms");
   app->add_option("--duration", flags.duration, "Run length per iteration (default: the trajectory's)");
   app->add_option("--deadline", flags.deadline, "How long the server waits for feedback (default: one period)");

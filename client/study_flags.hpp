@@ -26,6 +26,7 @@ struct StudyFlags {
   std::vector<std::string> disturbances;  // --disturbance, one per axis
   std::vector<std::string> dead_zone_inverses;  // --dead-zone-inverse, one per axis
   std::string clock;
+  std::string compensate;  // --compensate: a delay compensator (job::delay_compensators)
   std::string axes;
   std::string json_path;
   bool curve = false;

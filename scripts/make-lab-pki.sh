@@ -176,10 +176,10 @@ declare -A grants=()
 order=()
 for s in "${servers[@]}"; do
   # The per-axis topics live in the axes' partitions, the others in the default one.
-  grants[$s]=$(grant "$s" "$(rule "netmc/v3/lockstep/setpoint netmc/v3/realtime/setpoint" \
-    "netmc/v3/lockstep/feedback netmc/v3/realtime/feedback netmc/v3/axis_event" "netmc.axis.*" "netmc.axis.*")
-$(rule "netmc/v3/job_control netmc/v3/clock_probe netmc/v3/iteration_log" \
-    "netmc/v3/node_status netmc/v3/clock_reply")")
+  grants[$s]=$(grant "$s" "$(rule "netmc/v4/lockstep/setpoint netmc/v4/realtime/setpoint" \
+    "netmc/v4/lockstep/feedback netmc/v4/realtime/feedback netmc/v4/axis_event" "netmc.axis.*" "netmc.axis.*")
+$(rule "netmc/v4/job_control netmc/v4/clock_probe netmc/v4/iteration_log" \
+    "netmc/v4/node_status netmc/v4/clock_reply")")
   order+=("$s")
 done
 for spec in "${nodes[@]}"; do
@@ -189,13 +189,13 @@ for spec in "${nodes[@]}"; do
   for axis in ${axes//,/ }; do partitions+=" netmc.axis.$axis"; done
   # Feedback and events only in its axes' partitions, their setpoints; its status and clock
   # replies, job control and probes in the default partition.
-  grants[$node]=$(grant "$node" "$(rule "netmc/v3/lockstep/feedback netmc/v3/realtime/feedback netmc/v3/axis_event" \
-    "netmc/v3/lockstep/setpoint netmc/v3/realtime/setpoint" "$partitions" "$partitions")
-$(rule "netmc/v3/node_status netmc/v3/clock_reply" "netmc/v3/job_control netmc/v3/clock_probe netmc/v3/node_status")")
+  grants[$node]=$(grant "$node" "$(rule "netmc/v4/lockstep/feedback netmc/v4/realtime/feedback netmc/v4/axis_event" \
+    "netmc/v4/lockstep/setpoint netmc/v4/realtime/setpoint" "$partitions" "$partitions")
+$(rule "netmc/v4/node_status netmc/v4/clock_reply" "netmc/v4/job_control netmc/v4/clock_probe netmc/v4/node_status")")
   order+=("$node")
 done
 for r in "${readers[@]}"; do
-  grants[$r]=$(grant "$r" "$(rule "" "netmc/v3/iteration_log netmc/v3/node_status")")
+  grants[$r]=$(grant "$r" "$(rule "" "netmc/v4/iteration_log netmc/v4/node_status")")
   order+=("$r")
 done
 

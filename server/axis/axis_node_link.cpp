@@ -3,6 +3,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "dds_typesPubSubTypes.h"
 #include "idl/job.pb.h"
@@ -457,6 +459,11 @@ void AxisNodeLink::answer_probes() {
   }
 }
 
+double planned_instant(const netmc::dds::Setpoint& setpoint) {
+  const double acts_at = setpoint.acts_at_s();
+  return std::isfinite(acts_at) && acts_at > 0.0 ? acts_at : -std::numeric_limits<double>::infinity();
+}
+
 void append_applied(netmc::dds::Feedback& feedback, const std::vector<sim::AppliedSetpoint>& applied) {
   for (const auto& a : applied) {
     if (feedback.applied().size() >= netmc::dds::kMaxApplied) break;
@@ -464,6 +471,7 @@ void append_applied(netmc::dds::Feedback& feedback, const std::vector<sim::Appli
     entry.cycle(a.sequence);
     entry.send_time_s(a.send_time_s);
     entry.arrival_time_s(a.arrival_time_s);
+    entry.network_arrival_s(a.network_arrival_s);
     feedback.applied().push_back(entry);
   }
 }

@@ -213,6 +213,9 @@ std::atomic<bool>& fault_reset_requested();
 
 // Copies setpoints applied by the actuator into a feedback sample.
 void append_applied(netmc::dds::Feedback& feedback, const std::vector<sim::AppliedSetpoint>& applied);
+// The instant a setpoint is meant to act (Setpoint.acts_at_s, delay compensation), for
+// AxisEndpoint::submit_setpoint; -inf (on arrival) for 0 or a value that is not finite.
+double planned_instant(const netmc::dds::Setpoint& setpoint);
 // Fills the sample fields of a feedback.
 void set_sample(netmc::dds::Feedback& feedback, std::uint64_t cycle, double time_s,
                 const sim::AxisSample& sample);

@@ -179,7 +179,8 @@ void LockstepAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   feedback.server(setpoint.server());
   feedback.job_id(setpoint.job_id());
   feedback.iteration(setpoint.iteration());
-  axis.endpoint->submit_setpoint(setpoint.send_time_s(), setpoint.cycle(), setpoint.command());
+  axis.endpoint->submit_setpoint(setpoint.send_time_s(), setpoint.cycle(), setpoint.command(),
+                                 planned_instant(setpoint));
   const std::uint64_t next = setpoint.cycle() + 1;
   if (next >= axis.cycles) {
     feedback.cycle(next);

@@ -547,7 +547,7 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   }
   // The setpoint leaves for the actuator now: netsim's downlink delay starts here.
   const double now = link_.now_s() - axis.start_time_s;
-  axis.endpoint->submit_setpoint(now, setpoint.cycle(), setpoint.command());
+  axis.endpoint->submit_setpoint(now, setpoint.cycle(), setpoint.command(), planned_instant(setpoint));
   if (axis.server_send_times.size() >= kMaxSetpointsInFlight) axis.server_send_times.erase(axis.server_send_times.begin());
   axis.server_send_times[setpoint.cycle()] = setpoint.send_time_s();
   axis.last_setpoint_s = now;
@@ -589,6 +589,7 @@ void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clo
     const auto sent = axis.server_send_times.find(a.sequence);  // see server_send_times
     applied.send_time_s(sent != axis.server_send_times.end() ? sent->second : a.send_time_s);
     applied.arrival_time_s(a.arrival_time_s);
+    applied.network_arrival_s(a.network_arrival_s);
     feedback.applied().push_back(applied);
   };
   for (const auto& a : axis.applied_since_sample) add_applied(a);

@@ -6,15 +6,15 @@
 
 namespace netmc::dds {
 
-inline constexpr const char* kJobControlTopic = "netmc/v3/job_control";
-inline constexpr const char* kAxisEventTopic = "netmc/v3/axis_event";
-inline constexpr const char* kRealtimeSetpointTopic = "netmc/v3/realtime/setpoint";
-inline constexpr const char* kRealtimeFeedbackTopic = "netmc/v3/realtime/feedback";
-inline constexpr const char* kLockstepSetpointTopic = "netmc/v3/lockstep/setpoint";
-inline constexpr const char* kLockstepFeedbackTopic = "netmc/v3/lockstep/feedback";
-inline constexpr const char* kIterationLogTopic = "netmc/v3/iteration_log";
-inline constexpr const char* kNodeStatusTopic = "netmc/v3/node_status";
-inline constexpr const char* kClockProbeTopic = "netmc/v3/clock_probe";
-inline constexpr const char* kClockReplyTopic = "netmc/v3/clock_reply";
+inline constexpr const char* kJobControlTopic = "netmc/v4/job_control";
+inline constexpr const char* kAxisEventTopic = "netmc/v4/axis_event";
+inline constexpr const char* kRealtimeSetpointTopic = "netmc/v4/realtime/setpoint";
+inline constexpr const char* kRealtimeFeedbackTopic = "netmc/v4/realtime/feedback";
+inline constexpr const char* kLockstepSetpointTopic = "netmc/v4/lockstep/setpoint";
+inline constexpr const char* kLockstepFeedbackTopic = "netmc/v4/lockstep/feedback";
+inline constexpr const char* kIterationLogTopic = "netmc/v4/iteration_log";
+inline constexpr const char* kNodeStatusTopic = "netmc/v4/node_status";
+inline constexpr const char* kClockProbeTopic = "netmc/v4/clock_probe";
+inline constexpr const char* kClockReplyTopic = "netmc/v4/clock_reply";
 
 }  // namespace netmc::dds

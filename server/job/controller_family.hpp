@@ -19,6 +19,7 @@
 #include "control/axis/axis_controller.hpp"
 #include "control/contour_group.hpp"
 #include "control/cross_coupling/contour_compensator.hpp"
+#include "control/delay_compensation/prediction_model.hpp"
 #include "server/job/controller_gains.hpp"
 #include "server/sim/contour_job.hpp"
 
@@ -51,6 +52,10 @@ struct ControllerFamily {
 
   // ControllerRole::axis: the law of axis `axis` of the group.
   std::function<std::unique_ptr<control::AxisController>(const ControllerContext&, std::size_t axis)> make_axis;
+  // The model a delay compensator predicts axis `axis` with (--compensate predictor): the law's
+  // own where it has one (ADRC: its observer's). Unset: the law cannot predict, and a job that
+  // asks it to is refused naming it.
+  std::function<control::PredictionModel(const ControllerContext&, std::size_t axis)> prediction_model;
   // ControllerRole::compensator.
   std::function<std::unique_ptr<control::ContourCompensator>(const ControllerContext&)> make_compensator;
   // ControllerRole::group and ::tracking: the group's controller under `name` (one of names),

@@ -239,6 +239,29 @@ ControllerFactory ControllerRegistry::resolve_plugin(const netmc::v1::Controller
   return factory;
 }
 
+std::vector<std::string> ControllerRegistry::predicting_laws() const {
+  std::vector<std::string> names;
+  for (const auto& candidate : families_) {
+    if (candidate.prediction_model) names.insert(names.end(), candidate.names.begin(), candidate.names.end());
+  }
+  return names;
+}
+
+std::optional<std::vector<control::PredictionModel>> ControllerRegistry::prediction_models(const netmc::v1::ControllerSpec& spec,
+                                                                          const sim::JobReference& reference,
+                                                                          const std::vector<std::string>& axis_names,
+                                                                          double sample_period_s) const {
+  const std::string& name = spec.name();
+  const ControllerFamily* head = family(name);
+  if (!head && name.rfind(kPluginPrefix, 0) != 0) head = family(std::string_view(name).substr(0, name.find('+')));
+  if (!head || !head->prediction_model) return std::nullopt;
+  const GainsReader gains(spec, axis_names);
+  const ControllerContext context{gains, sample_period_s, reference, spec.estimator()};
+  std::vector<control::PredictionModel> models;
+  for (std::size_t axis = 0; axis < axis_names.size(); ++axis) models.push_back(head->prediction_model(context, axis));
+  return models;
+}
+
 ControllerFactory ControllerRegistry::resolve(const netmc::v1::ControllerSpec& spec, const sim::JobReference& reference,
                                               const std::vector<std::string>& axis_names, double sample_period_s,
                                               const ControllerPluginPolicy& plugins) const {

@@ -49,6 +49,15 @@ class ControllerRegistry {
                             const std::vector<std::string>& axis_names, double sample_period_s,
                             const ControllerPluginPolicy& plugins = {}) const;
 
+  // The law's own prediction model of each axis (group order) for a delay compensator; unset for a
+  // law that has none (ControllerFamily::prediction_model).
+  std::optional<std::vector<control::PredictionModel>> prediction_models(const netmc::v1::ControllerSpec& spec,
+                                                          const sim::JobReference& reference,
+                                                          const std::vector<std::string>& axis_names,
+                                                          double sample_period_s) const;
+  // The names of the laws that have a prediction model of their own.
+  std::vector<std::string> predicting_laws() const;
+
   // "adrc, pid ... | AXIS+COMPENSATOR ..." for --controller's help.
   std::string names_help() const;
   // A Markdown table of every family: name, role, gains flag, source, tuned for, what it is.

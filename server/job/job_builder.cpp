@@ -23,6 +23,7 @@
 #include "plant/plant_catalog.hpp"
 #include "server/job/controller_registry.hpp"
 #include "server/job/dead_zone_spec.hpp"
+#include "server/job/delay_compensators.hpp"
 #include "server/job/legacy_spec.hpp"
 #include "server/job/plant_source.hpp"
 #include "server/job/reference_limits.hpp"
@@ -535,6 +536,7 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec, const JobBuild
   // before anything runs.
   job.controller_factory = ControllerRegistry::global().resolve(spec.controller(), job.reference, job.axis_names,
                                                                 spec.sample_period_s(), options.controller_plugins);
+  job.compensation = build_compensation(spec, job.reference, job.axis_names);
   job.uplink = build_link(spec.uplink(), "uplink");
   job.downlink = build_link(spec.downlink(), "downlink");
   job.sensor.resolution_m = spec.sensor().resolution_m();
@@ -671,6 +673,11 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   out.set_diverged_at_s(m.diverged_at_s);
   if (m.did_not_follow) out.set_did_not_follow(true);
   out.set_clock_uncertainty_s(m.clock_uncertainty_s);
+  if (m.compensated) {
+    out.set_feedback_age_mean_s(m.feedback_age_mean_s);
+    out.set_feedback_age_p99_s(m.feedback_age_p99_s);
+    out.set_feedback_age_max_s(m.feedback_age_max_s);
+  }
   return out;
 }
 
@@ -703,6 +710,7 @@ netmc::v1::RunResult describe_run(const netmc::v1::JobSpec& spec,
   result.set_sample_period_s(spec.sample_period_s());
   result.set_seed(spec.seed());
   result.set_evaluation_start_s(sim::resolve_evaluation_start(spec.evaluation_start_s(), reference_period_s));
+  if (spec.has_compensation()) result.set_compensation(spec.compensation().name());
   return result;
 }
 

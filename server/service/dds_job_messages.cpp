@@ -1,6 +1,7 @@
 #include "server/service/dds_job_messages.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "netsim/delay_model.hpp"
 
@@ -49,7 +50,7 @@ void JobPublisher::end_iteration(std::size_t axis, std::uint32_t iteration, std:
 }
 
 void JobPublisher::command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle, double command,
-                           double send_time_s) {
+                           double send_time_s, double acts_at_s) {
   netmc::dds::Setpoint setpoint;
   setpoint.axis(channels_.axes.at(axis));
   setpoint.server(channels_.server);
@@ -58,6 +59,7 @@ void JobPublisher::command(std::size_t axis, std::uint32_t iteration, std::uint6
   setpoint.cycle(cycle);
   setpoint.command(command);
   setpoint.send_time_s(send_time_s);
+  setpoint.acts_at_s(std::isfinite(acts_at_s) ? acts_at_s : 0.0);
   dds::write_checked(channels_.setpoints.at(axis), &setpoint);
 }
 

@@ -52,8 +52,9 @@ class JobPublisher {
   void begin_iteration(std::size_t axis, std::uint32_t iteration, double start_position_m,
                        double start_time_s, bool with_spec);
   void end_iteration(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle);
+  // `acts_at_s`: when the command is meant to act (delay compensation); not finite: on arrival.
   void command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle, double command,
-               double send_time_s);
+               double send_time_s, double acts_at_s);
   // Releases every axis (never throws: it runs on the way out of failed jobs too).
   void end_job() noexcept;
   std::uint64_t job_id() const { return job_id_; }

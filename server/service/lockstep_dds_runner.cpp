@@ -78,7 +78,7 @@ void LockstepDdsRunner::run(const std::function<void(const sim::IterationRecord&
         }
         for (std::uint32_t axis = 0; axis < axes; ++axis) {
           publisher_.command(axis, iteration, k, command.command[static_cast<Eigen::Index>(axis)],
-                             command.send_time_s);
+                             command.send_time_s, command.acts_at_s);
         }
         responses = collect(iteration, k + 1);
         if (k + 1 == cycles) break;
@@ -87,7 +87,7 @@ void LockstepDdsRunner::run(const std::function<void(const sim::IterationRecord&
         for (std::uint32_t axis = 0; axis < axes; ++axis) {
           std::vector<sim::AppliedSetpoint> applied;
           for (const auto& a : responses[axis].applied()) {
-            applied.push_back({a.cycle(), a.send_time_s(), a.arrival_time_s()});
+            applied.push_back({a.cycle(), a.send_time_s(), a.arrival_time_s(), a.network_arrival_s()});
           }
           server_.record_applied(axis, applied);
         }

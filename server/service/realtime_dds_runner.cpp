@@ -67,7 +67,9 @@ void RealtimeDdsRunner::gather(std::uint32_t iteration, std::uint64_t cycle, Clo
     last_heard_[axis] = Clock::now();
     if (sample->cycle() == cycle && !spin_until) spin_until = last_heard_[axis] + spin;
     std::vector<sim::AppliedSetpoint> applied;
-    for (const auto& a : sample->applied()) applied.push_back({a.cycle(), a.send_time_s(), a.arrival_time_s()});
+    for (const auto& a : sample->applied()) {
+      applied.push_back({a.cycle(), a.send_time_s(), a.arrival_time_s(), a.network_arrival_s()});
+    }
     server_.record_applied(axis, applied);
     // The feedback enters the emulated uplink when it reaches the server: real latency + netsim.
     server_.submit_feedback(axis, sample->cycle(), job_time_s(), {sample->position_m(), sample->true_position_m()});
@@ -162,8 +164,10 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
         }
         const auto departure = Clock::now();
         const double sent_at = job_time_s();
+        // The planned travel is kept from the real departure, which a loaded host may delay.
+        const double acts_at = command.acts_at_s + (sent_at - command.send_time_s);
         for (std::size_t axis = 0; axis < axes; ++axis) {
-          publisher_.command(axis, iteration, k, command.command[static_cast<Eigen::Index>(axis)], sent_at);
+          publisher_.command(axis, iteration, k, command.command[static_cast<Eigen::Index>(axis)], sent_at, acts_at);
         }
         ++commands_sent;
         server_.correct_compute_delay(std::chrono::duration<double>(departure - ready).count());

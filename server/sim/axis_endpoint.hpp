@@ -6,6 +6,7 @@
 // netmc's simulated drive; the distributed runs call the same code inside netmc-axis.
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -26,7 +27,10 @@ struct AxisSample {
 struct AppliedSetpoint {
   std::uint64_t sequence = 0;
   double send_time_s = 0.0;
-  double arrival_time_s = 0.0;
+  double arrival_time_s = 0.0;  // when it began to act
+  // When it reached the axis, where a setpoint planned for a later instant was held until then
+  // (delay compensation); the same as arrival_time_s otherwise.
+  double network_arrival_s = 0.0;
 };
 
 class AxisEndpoint {
@@ -41,8 +45,12 @@ class AxisEndpoint {
   // Every iteration starts from rest at `start_position_m` with nothing in flight.
   void begin_iteration(std::size_t iteration, double start_position_m);
   AxisSample sample();
-  // Setpoint `sequence` leaves the server at `send_time_s`; false if the downlink drops it.
-  bool submit_setpoint(double send_time_s, std::uint64_t sequence, double command);
+  // Setpoint `sequence` leaves the server at `send_time_s`; false if the downlink drops it. One
+  // planned to act at `acts_at_s` (delay compensation) that arrives earlier is held until then
+  // (a playout buffer: the time-varying delay becomes the constant one the server planned for);
+  // a later one acts on arrival, as every setpoint without a plan does.
+  bool submit_setpoint(double send_time_s, std::uint64_t sequence, double command,
+                       double acts_at_s = -std::numeric_limits<double>::infinity());
   // Integrate to `end_time_s`, applying the setpoints that arrive on the way, and read the drive
   // there; the result is valid until the next call (one buffer, no allocation per cycle).
   const std::vector<AppliedSetpoint>& advance_to(double end_time_s);
@@ -50,7 +58,12 @@ class AxisEndpoint {
   const std::vector<AppliedSetpoint>& apply_arrived(double now_s);
   // When the next setpoint in flight on the emulated downlink arrives (a drive on its own time
   // is written then).
-  std::optional<double> next_arrival_s() const { return downlink_.next_arrival_s(); }
+  // A setpoint held for its planned instant counts as arriving then.
+  std::optional<double> next_arrival_s() const {
+    auto next = downlink_.next_arrival_s();
+    if (!held_.empty() && (!next || held_.front().delivery.arrival_time_s < *next)) next = held_.front().delivery.arrival_time_s;
+    return next;
+  }
 
   // Watchdog: no setpoint in time, so the drive is told to quick stop.
   void hold() { axis_.quick_stop(); }
@@ -61,8 +74,29 @@ class AxisEndpoint {
   std::uint64_t lost_setpoints() const { return lost_; }
   std::uint64_t stale_setpoints() const { return axis_.stale_setpoints(); }
 
+  // Plans kept for setpoints in flight (one each; the oldest is forgotten beyond it).
+  static constexpr std::size_t kMaxPlanned = 4096;
+  // The longest a setpoint is held for its planned instant.
+  static constexpr double kMaxHoldS = 1.0;
+
  private:
-  const std::vector<AppliedSetpoint>& record(const std::vector<netsim::DelayedChannel<double>::Delivery>& deliveries);
+  using Delivery = netsim::DelayedChannel<double>::Delivery;
+  const std::vector<AppliedSetpoint>& record(const std::vector<Delivery>& deliveries);
+  // Holds the deliveries planned for later than their arrival and releases, into `deliveries`,
+  // those due by `until_s` at their planned instant, sorted as the channel sorts.
+  void play_out(std::vector<Delivery>& deliveries, double until_s);
+
+  struct Planned {
+    std::uint64_t sequence;
+    double acts_at_s;
+  };
+  struct Held {
+    Delivery delivery;           // arrival_time_s: when it acts
+    double network_arrival_s;
+  };
+  std::vector<Planned> planned_;  // setpoints in flight with a plan, in sequence order
+  std::vector<Held> held_;        // arrived, waiting for their instant
+  std::vector<double> network_arrivals_;  // of deliveries_, for record()
 
   drive::SupervisedAxis axis_;
   plant::PositionSensor sensor_;

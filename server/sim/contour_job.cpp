@@ -73,6 +73,8 @@ void ContourJob::validate() const {
   require(divergence_limit_m > 0.0, "divergence_limit: expected a positive length");
   require(uplink.delay && uplink.loss && downlink.delay && downlink.loss,
           "delay: every link needs a delay and a loss model");
+  require(!compensation || compensation->axis_models.size() == axis_count(),
+          "compensation: expected a prediction model per axis of the group");
   require(!initial_position || (static_cast<std::size_t>(initial_position->size()) == axis_count() &&
                                 initial_position->allFinite()),
           "initial_position: expected finite coordinates, one per axis");

@@ -16,6 +16,7 @@
 
 #include "control/contour_group.hpp"
 #include "control/dead_zone/dead_zone_inverse.hpp"
+#include "control/delay_compensation/prediction_model.hpp"
 #include "control/trajectory/multi_sine_reference.hpp"
 #include "control/trajectory/reference_trajectory.hpp"
 #include "control/trajectory/spatial_circle.hpp"
@@ -39,6 +40,13 @@ struct LinkProfile {
 inline double resolve_evaluation_start(double requested_s, double reference_period_s) {
   return requested_s > 0.0 ? requested_s : 2.0 * reference_period_s;
 }
+
+// How the server compensates the loop's delay (JobSpec.compensation): the compensator's name and,
+// for the state predictor, the model of each axis in group order.
+struct DelayCompensation {
+  std::string name;                                  // "predictor"
+  std::vector<control::PredictionModel> axis_models;  // one per axis
+};
 
 // The reference a job's group follows: a planar trajectory (two axes), a circle in space (three
 // axes, thesis ch. 6) or a single axis's tracking reference (one axis, thesis ch. 5).
@@ -81,6 +89,8 @@ struct ContourJob {
   std::optional<control::AxisVector> initial_position;
   control::AxisVector start_position() const;
   bool record_traces = false;
+  // Unset: no compensation, the loop as the papers run it.
+  std::optional<DelayCompensation> compensation;
 
   // Throws std::invalid_argument naming the field when the job cannot run.
   void validate() const;

@@ -26,8 +26,8 @@ IterationRecord ContourJobRunner::run_iteration() {
     const CycleCommand command = server_.compute_cycle(k);
     if (command.diverged) break;
     for (std::size_t axis = 0; axis < axes_.size(); ++axis) {
-      axes_[axis].submit_setpoint(command.send_time_s, k,
-                                  command.command[static_cast<Eigen::Index>(axis)]);
+      axes_[axis].submit_setpoint(command.send_time_s, k, command.command[static_cast<Eigen::Index>(axis)],
+                                  command.acts_at_s);
     }
     if (k + 1 == cycles) break;
     // Axis nodes apply setpoints as they arrive during [t_k, t_k+1).

@@ -17,6 +17,20 @@ ContourServer::ContourServer(const ContourJob& job)
     uplinks_.emplace_back(netsim::LinkModel(job_.uplink.delay->clone(), job_.uplink.loss->clone(),
                                             job_stream(job_.seed, StreamKind::uplink, axis, 0)));
   }
+  if (job_.compensation) {
+    for (const auto& model : job_.compensation->axis_models) {
+      predictors_.emplace_back(model, job_.sample_period_s, job_.command_limit);
+    }
+  }
+}
+
+double ContourServer::playout_delay_s() {
+  if (downlink_delays_s_.empty()) return 0.0;
+  quantile_scratch_ = downlink_delays_s_;
+  const auto rank = static_cast<std::size_t>(kPlayoutQuantile * static_cast<double>(quantile_scratch_.size() - 1) + 0.5);
+  std::nth_element(quantile_scratch_.begin(), quantile_scratch_.begin() + static_cast<std::ptrdiff_t>(rank),
+                   quantile_scratch_.end());
+  return quantile_scratch_[rank];
 }
 
 control::AxisVector ContourServer::begin_iteration(std::size_t iteration) {
@@ -27,6 +41,11 @@ control::AxisVector ContourServer::begin_iteration(std::size_t iteration) {
     uplinks_[axis].reset(job_stream(job_.seed, StreamKind::uplink, axis, iteration));
   }
   controller_->begin_iteration(start, cycles_);
+  for (std::size_t axis = 0; axis < predictors_.size(); ++axis) {
+    predictors_[axis].reset(start[static_cast<Eigen::Index>(axis)]);
+  }
+  predicted_ = start;
+  feedback_age_.clear();
 
   record_ = IterationRecord{};
   record_.metrics.iteration = iteration;
@@ -97,6 +116,12 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
       if (sequence > newest_sequence_[axis]) {
         newest_sequence_[axis] = sequence;
         server_measurement_[static_cast<Eigen::Index>(axis)] = delivery.payload;
+        // The feedback's own time stamp: the instant the axis sampled it, t_j on the job's time
+        // line (a realtime node samples on the grid the server's t0 and its clock offset give it).
+        if (!predictors_.empty()) {
+          predictors_[axis].measured(delivery.sequence, static_cast<double>(delivery.sequence) * job_.sample_period_s,
+                                     delivery.payload);
+        }
       }
       if (delivery.sequence == cycle) {
         arrived = true;
@@ -110,11 +135,36 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   compute_time_ = std::max(compute_time_, complete ? last_arrival : deadline);
 
   CycleCommand out;
-  const control::GroupCycle& step = controller_->step(cycle, reference, server_measurement_);
+  out.send_time_s = compute_time_ + job_.compute_delay_s;
+  const control::GroupCycle* computed = nullptr;
+  if (predictors_.empty()) {
+    computed = &controller_->step(cycle, reference, server_measurement_);
+  } else {
+    // The controller acts on the instant its command will act: each axis's state predicted from
+    // its newest sample over that sample's age plus the setpoint's expected travel, and the
+    // reference there. Without delay the instant is t_k and nothing changes.
+    const double acts_at = out.send_time_s + playout_delay_s();
+    out.acts_at_s = acts_at;
+    for (std::size_t axis = 0; axis < predictors_.size(); ++axis) {
+      const auto i = static_cast<Eigen::Index>(axis);
+      const auto& predictor = predictors_[axis];
+      predicted_[i] = predictor.has_measurement() ? predictor.predict_position(acts_at) : server_measurement_[i];
+      if (predictor.has_measurement()) feedback_age_.add(compute_time_ - predictor.newest_sample_time_s());
+    }
+    const control::GroupReference* planned = &reference;
+    if (acts_at != t) {
+      contour_->sample(acts_at, predicted_reference_);
+      planned = &predicted_reference_;
+    }
+    computed = &controller_->step(cycle, *planned, predicted_);
+    for (std::size_t axis = 0; axis < predictors_.size(); ++axis) {
+      predictors_[axis].command_sent(cycle, computed->command[static_cast<Eigen::Index>(axis)], acts_at);
+    }
+  }
+  const control::GroupCycle& step = *computed;
   out.command = step.command;
   // Only a controller with internal estimates has any to keep (most cycles copy nothing).
   if (!record_.metrics.estimate_names.empty()) last_estimates_ = step.estimates;
-  out.send_time_s = compute_time_ + job_.compute_delay_s;
   tau_cc_.add(job_.compute_delay_s);
 
   // Metrics from the true plant state and the exact contour.
@@ -188,6 +238,16 @@ void ContourServer::record_applied(std::size_t axis, const std::vector<AppliedSe
         a.arrival_time_s - static_cast<double>(a.sequence) * job_.sample_period_s;
     tau_.add(loop_delay);
     tau_ca_.add(a.arrival_time_s - a.send_time_s);
+    if (!predictors_.empty()) {
+      predictors_[axis].command_applied(a.sequence, a.arrival_time_s);
+      const double travel = a.network_arrival_s - a.send_time_s;
+      if (downlink_delays_s_.size() < kDownlinkWindow) {
+        downlink_delays_s_.push_back(travel);
+      } else {
+        downlink_delays_s_[downlink_next_] = travel;
+        downlink_next_ = (downlink_next_ + 1) % kDownlinkWindow;
+      }
+    }
     if (axis == 0) latest_tau_s_ = loop_delay;
     if (job_.record_traces && axis == 0 && a.sequence < record_.trace.size()) {
       record_.trace[a.sequence].tau_s = loop_delay;
@@ -244,6 +304,10 @@ IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
   summarize(tau_sc_, m.tau_sc_mean_s, m.tau_sc_p99_s, m.tau_sc_max_s);
   summarize(tau_cc_, m.tau_cc_mean_s, m.tau_cc_p99_s, m.tau_cc_max_s);
   summarize(tau_ca_, m.tau_ca_mean_s, m.tau_ca_p99_s, m.tau_ca_max_s);
+  if (!predictors_.empty()) {
+    m.compensated = true;
+    summarize(feedback_age_, m.feedback_age_mean_s, m.feedback_age_p99_s, m.feedback_age_max_s);
+  }
   controller_->end_iteration();
   return std::move(record_);
 }

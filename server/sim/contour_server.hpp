@@ -6,10 +6,12 @@
 
 #include <Eigen/Dense>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
 #include "control/contour_group.hpp"
+#include "control/delay_compensation/axis_state_predictor.hpp"
 #include "netsim/delayed_channel.hpp"
 #include "server/sim/axis_endpoint.hpp"
 #include "server/sim/contour_job.hpp"
@@ -22,6 +24,9 @@ namespace netmc::sim {
 struct CycleCommand {
   control::AxisVector command;  // one per axis, in the group's order
   double send_time_s = 0.0;     // when the setpoints leave the server (virtual time)
+  // With delay compensation, the instant the commands are meant to act (the axes hold an early
+  // one until then); -inf: on arrival.
+  double acts_at_s = -std::numeric_limits<double>::infinity();
   bool diverged = false;        // the loop is unstable: stop the iteration
 };
 
@@ -59,6 +64,22 @@ class ContourServer {
   // not follow (IterationMetrics::did_not_follow).
   static constexpr double kCoverageFraction = 0.5;
   bool did_not_follow() const;
+  // The setpoints' planned travel, from the server to the instant they act: a high quantile of
+  // the downlink delays the axes reported lately (0 before the first), so that most setpoints
+  // arrive before their instant and act exactly then.
+  double playout_delay_s();
+
+  // Delay compensation (job.compensation): one predictor per axis, the positions and the
+  // reference the controller is given instead of the newest measurement and the reference at t_k.
+  std::vector<control::AxisStatePredictor> predictors_;
+  control::AxisVector predicted_;
+  control::GroupReference predicted_reference_;
+  static constexpr std::size_t kDownlinkWindow = 256;  // the delays the quantile is taken over
+  static constexpr double kPlayoutQuantile = 0.95;
+  std::vector<double> downlink_delays_s_;   // a ring of the newest kDownlinkWindow
+  std::size_t downlink_next_ = 0;
+  std::vector<double> quantile_scratch_;
+  DelayStatistics feedback_age_;
 
   ContourJob job_;
   std::shared_ptr<const control::GroupContour> contour_;

@@ -46,6 +46,10 @@ struct IterationMetrics {
   bool did_not_follow = false;
   double diverged_at_s = 0.0;
   double clock_uncertainty_s = 0.0;      // distributed realtime: +- on tau_sc / tau_ca
+  // With a delay compensator only: the age of the newest feedback of each axis when a cycle was
+  // computed (compute time - sample time), over the cycles and axes.
+  bool compensated = false;
+  double feedback_age_mean_s = 0.0, feedback_age_p99_s = 0.0, feedback_age_max_s = 0.0;
   // The controller's internal estimates (adaptive parameters, observer states) and their values
   // after the iteration's last cycle; empty for a controller without any.
   std::vector<control::EstimateName> estimate_names;

@@ -1,0 +1,106 @@
+#include "server/job/delay_compensators.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "plant/nominal_axis_model.hpp"
+
+namespace netmc::job {
+
+const std::vector<DelayCompensatorDescriptor>& delay_compensators() {
+  static const std::vector<DelayCompensatorDescriptor> compensators = {
+      {"none", "none", "no compensation: the controller sees the newest feedback and the reference at t_k", "-",
+       "paper 001 (the papers' loop)"},
+      {"predictor", "predictor",
+       "each axis's state predicted from its newest time-stamped feedback over that feedback's age plus the "
+       "setpoint's expected travel (mean of the downlink delays the axes reported), with the commands already "
+       "sent; the controller (axis laws and contour compensator alike) acts on the predicted positions and the "
+       "reference at the instant its command will act",
+       "the plant's nominal model x'' = a x' + b u - c tanh(x'/v_s) + d where netmc knows it (seed001, ballscrew), "
+       "else the axis law's own (ADRC's observer model x'' = b0 u + d); d estimated, held over the prediction",
+       "Smith; Yi-An-Choi 2017; filtered Smith predictor (arXiv 2506.23421)"},
+  };
+  return compensators;
+}
+
+std::string delay_compensator_syntax() {
+  std::string text;
+  for (const auto& compensator : delay_compensators()) text += (text.empty() ? "" : " | ") + compensator.syntax;
+  return text;
+}
+
+std::string delay_compensators_markdown_table() {
+  std::string table =
+      "| compensator | what it does | predicts with | source |\n"
+      "| --- | --- | --- | --- |\n";
+  for (const auto& c : delay_compensators()) {
+    table += fmt::format("| `{}` | {} | {} | {} |\n", c.syntax, c.summary, c.model, c.source);
+  }
+  return table;
+}
+
+namespace {
+
+const DelayCompensatorDescriptor* find_compensator(std::string_view name) {
+  for (const auto& compensator : delay_compensators()) {
+    if (compensator.name == name) return &compensator;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::optional<netmc::v1::CompensationSpec> parse_compensation(std::string_view text, std::string_view flag) {
+  if (!find_compensator(text)) {
+    throw std::invalid_argument(fmt::format("{}: expected {}, got '{}'", flag, delay_compensator_syntax(),
+                                            text.substr(0, 80)));
+  }
+  if (text == "none") return std::nullopt;
+  netmc::v1::CompensationSpec spec;
+  spec.set_name(std::string(text));
+  return spec;
+}
+
+std::optional<sim::DelayCompensation> build_compensation(const netmc::v1::JobSpec& spec,
+                                                         const sim::JobReference& reference,
+                                                         const std::vector<std::string>& axis_names) {
+  if (!spec.has_compensation()) return std::nullopt;
+  const std::string& name = spec.compensation().name();
+  if (!find_compensator(name)) {
+    throw std::invalid_argument(fmt::format("compensation.name: expected {}, got '{}'", delay_compensator_syntax(),
+                                            name.substr(0, 80)));
+  }
+  if (name == "none") return std::nullopt;
+  sim::DelayCompensation compensation;
+  compensation.name = name;
+  const auto& registry = ControllerRegistry::global();
+  const auto law_models = registry.prediction_models(spec.controller(), reference, axis_names, spec.sample_period_s());
+  for (std::size_t axis = 0; axis < axis_names.size(); ++axis) {
+    // The plant's nominal model where netmc knows one; its observer as fast as the law's own.
+    // A single axis named y (or z) is the plant's Y (Z), as the job builds it.
+    const std::size_t plant_axis =
+        axis_names.size() == 1 ? (axis_names[0] == "y" ? 1 : axis_names[0] == "z" ? 2 : 0) : axis;
+    if (const auto nominal = plant::nominal_axis_model(spec.plant(), plant_axis)) {
+      control::PredictionModel model;
+      model.damping_per_s = nominal->damping_per_s;
+      model.input_gain = nominal->input_gain;
+      model.coulomb_m_s2 = nominal->coulomb_m_s2;
+      model.coulomb_velocity_scale_m_s = nominal->coulomb_velocity_scale_m_s;
+      if (law_models) model.observer_bandwidth_rad_s = (*law_models)[axis].observer_bandwidth_rad_s;
+      compensation.axis_models.push_back(model);
+    } else if (law_models) {
+      compensation.axis_models.push_back((*law_models)[axis]);
+    } else {
+      std::string laws;
+      for (const auto& law : registry.predicting_laws()) laws += (laws.empty() ? "" : ", ") + law;
+      throw std::invalid_argument(fmt::format(
+          "compensation: {} needs a model of each axis: plant '{}' has no nominal model netmc knows (seed001, "
+          "ballscrew have) and controller '{}' has none of its own (laws that have: {})",
+          name, spec.plant().substr(0, 80), spec.controller().name().substr(0, 80), laws));
+    }
+  }
+  return compensation;
+}
+
+}  // namespace netmc::job

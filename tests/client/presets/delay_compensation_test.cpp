@@ -1,0 +1,148 @@
+// Delay compensation on paper 001's study (in-process): the state predictor keeps every
+// controller stable beyond two sample periods of delay where none is without it, restores the
+// errors of the loop without delay, does no harm without delay, and reports the feedback's age.
+// The no-delay values are the preset's own (paper 001's loop, U(0.3, 0.8) ms).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "client/presets.hpp"
+#include "client/study_runner.hpp"
+#include "server/job/delay_compensators.hpp"
+#include "server/job/job_builder.hpp"
+
+namespace netmc::cli {
+namespace {
+
+netmc::v1::DelayProfile uniform(double min_s, double max_s) {
+  netmc::v1::DelayProfile delay;
+  delay.mutable_uniform()->set_min_s(min_s);
+  delay.mutable_uniform()->set_max_s(max_s);
+  return delay;
+}
+
+netmc::v1::DelayProfile constant(double delay_s) { return uniform(delay_s, delay_s); }
+
+// Paper 001's four runs, 10 iterations, with the links given and the compensator named ("" none).
+std::vector<RunOutcome> run_seed001(const netmc::v1::DelayProfile* downlink, const netmc::v1::DelayProfile* uplink,
+                                    const std::string& compensator) {
+  StudyPlan plan = make_preset("seed001");
+  for (auto& job : plan.jobs) {
+    job.set_iterations(10);
+    if (downlink) *job.mutable_downlink()->mutable_delay() = *downlink;
+    if (uplink) *job.mutable_uplink()->mutable_delay() = *uplink;
+    if (!compensator.empty()) job.mutable_compensation()->set_name(compensator);
+  }
+  return run_study_in_process(plan, false, 2);
+}
+
+const netmc::v1::IterationMetrics& last(const RunOutcome& outcome) {
+  return outcome.result.iterations(outcome.result.iterations_size() - 1);
+}
+
+TEST(DelayCompensation, PredictorKeepsEveryRunStableBeyondTwoPeriodsAndWithinTwiceTheNoDelayErrors) {
+  const auto reference = run_seed001(nullptr, nullptr, "");
+  ASSERT_EQ(reference.size(), 4u);
+  struct Case {
+    const char* name;
+    netmc::v1::DelayProfile down, up;
+    bool has_up;
+  };
+  const std::vector<Case> cases = {
+      {"constant 20 ms (4 periods)", constant(0.020), {}, false},
+      {"U(10, 30) ms", uniform(0.010, 0.030), {}, false},
+      {"U(5, 10) ms each way", uniform(0.005, 0.010), uniform(0.005, 0.010), true},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const auto plain = run_seed001(&c.down, c.has_up ? &c.up : nullptr, "");
+    const auto compensated = run_seed001(&c.down, c.has_up ? &c.up : nullptr, "predictor");
+    // Without the compensator every run diverges (the table): the test is about it.
+    for (const auto& run : plain) EXPECT_TRUE(last(run).diverged()) << run.result.label();
+    for (std::size_t row = 0; row < compensated.size(); ++row) {
+      const auto& run = compensated[row];
+      ASSERT_EQ(run.result.iterations_size(), 10) << run.result.label();
+      EXPECT_FALSE(last(run).diverged()) << run.result.label();
+      EXPECT_EQ(run.result.compensation(), "predictor");
+      // Every controller within twice its own error without delay (adrc, adrc+ilccc are the bar).
+      EXPECT_LE(last(run).e_max_m(), 2.0 * last(reference[row]).e_max_m()) << run.result.label();
+    }
+  }
+}
+
+TEST(DelayCompensation, WithoutDelayThePredictorChangesNothingOrLessThanOnePercent) {
+  const netmc::v1::DelayProfile none;  // no delay at all: bit for bit
+  const auto plain_none = run_seed001(&none, nullptr, "");
+  const auto compensated_none = run_seed001(&none, nullptr, "predictor");
+  // The preset's own sub-period delay, U(0.3, 0.8) ms: less than 1 % either way.
+  const auto plain = run_seed001(nullptr, nullptr, "");
+  const auto compensated = run_seed001(nullptr, nullptr, "predictor");
+  for (std::size_t row = 0; row < plain.size(); ++row) {
+    SCOPED_TRACE(plain[row].result.label());
+    for (int i = 0; i < 10; ++i) {
+      EXPECT_EQ(plain_none[row].result.iterations(i).e_max_m(), compensated_none[row].result.iterations(i).e_max_m());
+      EXPECT_EQ(plain_none[row].result.iterations(i).e_sum_m(), compensated_none[row].result.iterations(i).e_sum_m());
+    }
+    const double before = last(plain[row]).e_max_m(), after = last(compensated[row]).e_max_m();
+    EXPECT_LT(std::abs(after - before), 0.01 * before);
+  }
+}
+
+TEST(DelayCompensation, FeedbackAgeIsReportedOnlyWithACompensatorAndMatchesItsClosedForm) {
+  // Feedback k arrives 7 ms after t_k, after its deadline (one period, 5 ms): every cycle k >= 1 is
+  // computed at t_k + 5 ms with sample k - 1, so its age is 10 ms; cycle 0 has none yet (no age).
+  const netmc::v1::DelayProfile none;
+  const auto up = constant(0.007);
+  const auto plain = run_seed001(&none, &up, "");
+  const auto compensated = run_seed001(&none, &up, "predictor");
+  EXPECT_FALSE(last(plain[0]).has_feedback_age_mean_s());
+  EXPECT_FALSE(plain[0].result.has_compensation());
+  const auto& aged = last(compensated[0]);
+  ASSERT_TRUE(aged.has_feedback_age_mean_s());
+  EXPECT_NEAR(aged.feedback_age_max_s(), 0.010, 1e-12);
+  EXPECT_NEAR(aged.feedback_age_p99_s(), 0.010, 1e-12);
+  EXPECT_NEAR(aged.feedback_age_mean_s(), 0.010, 1e-12);
+}
+
+TEST(DelayCompensation, BadCompensatorsAreRefusedNamingTheFieldOrTheLaw) {
+  try {
+    job::parse_compensation("smith", "--compensate");
+    FAIL() << "an unknown compensator was taken";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("--compensate: expected none | predictor, got 'smith'"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_FALSE(job::parse_compensation("none", "--compensate").has_value());
+
+  StudyPlan plan = make_preset("seed001");
+  netmc::v1::JobSpec spec = plan.jobs.front();
+  spec.mutable_compensation()->set_name("smith");
+  try {
+    job::build_contour_job(spec);
+    FAIL() << "a spec with an unknown compensator was built";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("compensation.name: expected none | predictor", 0), 0u) << error.what();
+  }
+  // A plant netmc has no nominal model of, under a law without one of its own: refused, naming both.
+  spec.mutable_compensation()->set_name("predictor");
+  spec.set_plant("stage004");
+  spec.mutable_controller()->set_name("pid+pidccc");
+  (*spec.mutable_controller()->mutable_gains())["pid"].mutable_values()->insert({"kp", 100.0});
+  try {
+    job::build_contour_job(spec);
+    FAIL() << "a law that cannot predict was given a predictor";
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    EXPECT_EQ(message.rfind("compensation: predictor needs a model of each axis", 0), 0u) << message;
+    EXPECT_NE(message.find("stage004"), std::string::npos) << message;
+    EXPECT_NE(message.find("pid+pidccc"), std::string::npos) << message;
+    EXPECT_NE(message.find("adrc"), std::string::npos) << message;  // the laws that have one
+  }
+  // The same law with ADRC's own model on that plant is taken.
+  spec.mutable_controller()->set_name("adrc+pidccc");
+  EXPECT_NO_THROW(job::build_contour_job(spec));
+}
+
+}  // namespace
+}  // namespace netmc::cli
