@@ -239,7 +239,8 @@ void add_job_override_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--uplink-loss", flags.uplink_loss, "Feedback loss (same forms as --loss)");
   app->add_option("--compensate", flags.compensate,
                   "Delay compensation: " + job::delay_compensator_syntax() +
-                      " (netmc sim --list-compensators; default none, the loop as the papers run it)");
+                      " (netmc sim --list-compensators; default none, the loop as the papers run it; netmc sweep: "
+                      "a list, one axis of the grid, e.g. none,predictor)");
   app->add_option("--sample-period", flags.sample_period, "Sample period h, e.g. 5ms");
   app->add_option("--duration", flags.duration, "Run length per iteration (default: the trajectory's)");
   app->add_option("--deadline", flags.deadline, "How long the server waits for feedback (default: one period)");

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "server/job/delay_compensators.hpp"
 #include "server/job/job_builder.hpp"
 
 namespace netmc::cli {
@@ -140,6 +141,13 @@ std::vector<SweepConfiguration> expand_sweep(const SweepAxes& axes) {
   }
   const std::vector<std::uint64_t> seeds =
       axes.seeds.empty() ? std::vector<std::uint64_t>{} : parse_seed_axis(axes.seeds);
+  // The compensator axis: --compensate none,predictor makes each run once per compensator.
+  std::vector<std::string> compensators;
+  if (!axes.fixed.compensate.empty()) {
+    compensators = split_list(axes.fixed.compensate);
+    if (compensators.empty()) throw std::invalid_argument("--compensate: expected NAME[,NAME...]");
+    for (const auto& name : compensators) job::parse_compensation(name, "--compensate");  // named as the flag
+  }
 
   // Base studies: each preset (or the spec file), with each trajectory.
   std::vector<std::string> presets = axes.presets;
@@ -154,7 +162,25 @@ std::vector<SweepConfiguration> expand_sweep(const SweepAxes& axes) {
       flags.preset = preset;
       flags.trajectory = trajectory;
       flags.controllers = axes.controllers;
-      const StudyPlan plan = plan_from_flags(flags);
+      flags.compensate.clear();  // an axis of the grid, applied below
+      StudyPlan plan = plan_from_flags(flags);
+      if (!compensators.empty()) {
+        std::vector<netmc::v1::JobSpec> runs;
+        for (const auto& run : plan.jobs) {
+          for (const auto& name : compensators) {
+            netmc::v1::JobSpec job = run;
+            if (const auto compensation = job::parse_compensation(name, "--compensate")) {
+              *job.mutable_compensation() = *compensation;
+              // Labelled RUN/COMPENSATOR, so that tables and figures keep the runs apart.
+              job.set_name((run.name().empty() ? run.controller().name() : run.name()) + "/" + name);
+            } else {
+              job.clear_compensation();
+            }
+            runs.push_back(std::move(job));
+          }
+        }
+        plan.jobs = std::move(runs);
+      }
       std::string base = preset.empty() ? axes.fixed.spec_file : preset;
       if (!trajectory.empty()) base += "/" + trajectory;
       for (const auto& run : plan.jobs) {
