@@ -77,13 +77,14 @@ void AxisStatePredictor::command_sent(std::uint64_t sequence, double command, do
     has_input_sequence_ = true;
     pending_.erase(pending_.begin());
   }
-  pending_.push_back({sequence, applied, expected_arrival_s});
+  pending_.push_back({sequence, applied, expected_arrival_s, false});
 }
 
 void AxisStatePredictor::command_applied(std::uint64_t sequence, double arrival_s) {
   for (auto& command : pending_) {
     if (command.sequence == sequence) {
       command.arrival_s = arrival_s;
+      command.reported = true;
       return;
     }
   }
@@ -92,7 +93,8 @@ void AxisStatePredictor::command_applied(std::uint64_t sequence, double arrival_
 void AxisStatePredictor::settle_commands_until(double time_s) {
   for (const auto& command : pending_) {
     // The axis keeps the newest sequence that has arrived: a late older one is dropped.
-    if (command.arrival_s <= time_s && (!has_input_sequence_ || command.sequence > input_sequence_)) {
+    if (command.reported && command.arrival_s <= time_s &&
+        (!has_input_sequence_ || command.sequence > input_sequence_)) {
       input_in_force_ = command.value;
       input_sequence_ = command.sequence;
       has_input_sequence_ = true;
@@ -103,9 +105,11 @@ void AxisStatePredictor::settle_commands_until(double time_s) {
   }
 }
 
-void AxisStatePredictor::advance(PredictedState& state, double from_s, double to_s) const {
+void AxisStatePredictor::advance(PredictedState& state, double from_s, double to_s, double known_s) const {
   by_arrival_.clear();
-  for (const auto& command : pending_) by_arrival_.push_back(&command);
+  for (const auto& command : pending_) {
+    if (counts(command, known_s)) by_arrival_.push_back(&command);
+  }
   std::stable_sort(by_arrival_.begin(), by_arrival_.end(),
                    [](const Command* a, const Command* b) { return a->arrival_s < b->arrival_s; });
   double input = input_in_force_;
@@ -131,7 +135,7 @@ void AxisStatePredictor::measured(std::uint64_t sequence, double sample_time_s, 
   if (has_measurement_ && sequence <= newest_sample_) return;
   if (has_measurement_ || sample_time_s > state_time_s_) {
     // Run the observer from its last sample to this one, then correct with the innovation.
-    advance(estimate_, state_time_s_, sample_time_s);
+    advance(estimate_, state_time_s_, sample_time_s, sample_time_s);
     state_time_s_ = std::max(state_time_s_, sample_time_s);
     settle_commands_until(state_time_s_);
   }
@@ -153,7 +157,7 @@ PredictedState AxisStatePredictor::estimate() const {
 double AxisStatePredictor::predict_position(double time_s) const {
   PredictedState state = estimate();
   if (!(time_s > state_time_s_)) return state.position_m;
-  advance(state, state_time_s_, time_s);
+  advance(state, state_time_s_, time_s, state_time_s_);
   return state.position_m;
 }
 

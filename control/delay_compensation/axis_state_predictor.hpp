@@ -31,7 +31,9 @@ class AxisStatePredictor {
   // Command `sequence` leaves for the axis and is expected to act from `expected_arrival_s`.
   // Sequences increase.
   void command_sent(std::uint64_t sequence, double command, double expected_arrival_s);
-  // The axis reports when command `sequence` began to act (the time-stamped loop).
+  // The axis reports when command `sequence` began to act (the time-stamped loop). A command the
+  // axis has not reported by the time of a newer sample than its planned instant was lost or is
+  // late: it no longer counts (until a report says when it acted).
   void command_applied(std::uint64_t sequence, double arrival_s);
   // The axis measured `position_m` at `sample_time_s` (sample `sequence`); older or repeated
   // samples than the newest are ignored.
@@ -54,9 +56,14 @@ class AxisStatePredictor {
     std::uint64_t sequence = 0;
     double value = 0.0;
     double arrival_s = 0.0;
+    bool reported = false;  // arrival_s is the axis's report, not the plan
   };
-  // Runs `state` from `from_s` to `to_s` under the commands as the axis applies them.
-  void advance(PredictedState& state, double from_s, double to_s) const;
+  // Whether `command` acts in a model run when the axis's reports are complete up to `known_s`
+  // (its newest sample): reported, or planned after that.
+  static bool counts(const Command& command, double known_s) { return command.reported || command.arrival_s > known_s; }
+  // Runs `state` from `from_s` to `to_s` under the commands as the axis applies them, its reports
+  // complete up to `known_s`.
+  void advance(PredictedState& state, double from_s, double to_s, double known_s) const;
   // The commands that act by `time_s` become the input in force there.
   void settle_commands_until(double time_s);
 

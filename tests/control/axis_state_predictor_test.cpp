@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <tuple>
 #include <vector>
 
 #include "control/delay_compensation/axis_state_predictor.hpp"
@@ -66,7 +67,7 @@ struct DelayedLoop {
   double h = 0.005, delay_s = 0.0175;
   TrueAxis axis{-20.0, 20.0, -0.05};
   AxisStatePredictor predictor;
-  std::deque<std::pair<double, double>> in_flight;  // arrival, command
+  std::deque<std::tuple<double, double, std::uint64_t>> in_flight;  // arrival, command, sequence
   double input = 0.0;
 
   // One period from t_k: sample, then a command, then the axis runs to t_k+1 applying arrivals.
@@ -74,12 +75,14 @@ struct DelayedLoop {
     const double t = static_cast<double>(k) * h;
     predictor.measured(k, t, axis.position);
     predictor.command_sent(k, command, t + delay_s);
-    in_flight.emplace_back(t + delay_s, command);
+    in_flight.emplace_back(t + delay_s, command, k);
     double now = t;
-    while (!in_flight.empty() && in_flight.front().first < t + h) {
-      axis.run(in_flight.front().first - now, input);
-      now = in_flight.front().first;
-      input = in_flight.front().second;
+    while (!in_flight.empty() && std::get<0>(in_flight.front()) < t + h) {
+      const auto [arrival, value, sequence] = in_flight.front();
+      axis.run(arrival - now, input);
+      now = arrival;
+      input = value;
+      predictor.command_applied(sequence, arrival);  // the axis's report, with the next sample
       in_flight.pop_front();
     }
     axis.run(t + h - now, input);
@@ -101,7 +104,7 @@ std::pair<double, double> predict_after_sine(DelayedLoop& loop) {
   // The truth: the axis run on from t_N with the commands still in flight.
   TrueAxis truth = loop.axis;
   double now = t, input = loop.input;
-  for (const auto& [arrival, command] : loop.in_flight) {
+  for (const auto& [arrival, command, sequence] : loop.in_flight) {
     truth.run(arrival - now, input);
     now = arrival;
     input = command;
@@ -167,6 +170,24 @@ TEST(AxisStatePredictor, AStaleCommandArrivingAfterANewerOneDoesNotAct) {
   advance_model(model, expected, 0.004, 0.0);
   advance_model(model, expected, 0.016, -0.5);
   EXPECT_NEAR(predictor.predict_position(0.020), expected.position_m, 1e-15);
+}
+
+TEST(AxisStatePredictor, ACommandTheAxisNeverReportedStopsCountingOnceANewerSamplePassedItsInstant) {
+  const PredictionModel model{.damping_per_s = 0.0, .input_gain = 10.0, .observer_bandwidth_rad_s = 100.0};
+  AxisStatePredictor predictor(model, 0.005);
+  predictor.reset(0.0);
+  predictor.measured(0, 0.0, 0.0);
+  predictor.command_sent(0, 1.0, 0.004);  // lost on the way: never reported
+  const double while_in_flight = predictor.predict_position(0.010);
+  EXPECT_GT(while_in_flight, 0.0);  // planned after the newest sample: assumed to act
+  predictor.measured(1, 0.005, 0.0);  // the axis did not move: its reports up to 5 ms lack it
+  EXPECT_EQ(predictor.predict_position(0.010), 0.0);
+  // A late report brings it back, from when it acted.
+  predictor.command_applied(0, 0.007);
+  PredictedState expected{0.0, 0.0, predictor.estimate().disturbance_m_s2};
+  advance_model(model, expected, 0.002, 0.0);
+  advance_model(model, expected, 0.003, 1.0);
+  EXPECT_NEAR(predictor.predict_position(0.010), expected.position_m, 1e-15);
 }
 
 TEST(AxisStatePredictor, ACommandBeyondTheLimitActsAsTheLimit) {
