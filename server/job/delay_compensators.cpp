@@ -14,12 +14,12 @@ const std::vector<DelayCompensatorDescriptor>& delay_compensators() {
        "paper 001 (the papers' loop)"},
       {"predictor", "predictor",
        "each axis's state predicted from its newest time-stamped feedback over that feedback's age plus the "
-       "setpoint's expected travel (mean of the downlink delays the axes reported), with the commands already "
-       "sent; the controller (axis laws and contour compensator alike) acts on the predicted positions and the "
-       "reference at the instant its command will act",
+       "setpoint's planned travel (the longest downlink delay the axes reported lately; an axis holds an earlier "
+       "arrival until then), with the commands already sent; the controller (axis law and contour compensator "
+       "alike) acts on the predicted positions and the reference at the instant its command will act",
        "the plant's nominal model x'' = a x' + b u - c tanh(x'/v_s) + d where netmc knows it (seed001, ballscrew), "
        "else the axis law's own (ADRC's observer model x'' = b0 u + d); d estimated, held over the prediction",
-       "Smith; Yi-An-Choi 2017; filtered Smith predictor (arXiv 2506.23421)"},
+       "Smith 1957; Yi, An and Choi 2017; the filtered Smith predictor (arXiv 2506.23421)"},
   };
   return compensators;
 }

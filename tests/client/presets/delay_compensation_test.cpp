@@ -4,6 +4,8 @@
 // The no-delay values are the preset's own (paper 001's loop, U(0.3, 0.8) ms).
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -142,6 +144,18 @@ TEST(DelayCompensation, BadCompensatorsAreRefusedNamingTheFieldOrTheLaw) {
   // The same law with ADRC's own model on that plant is taken.
   spec.mutable_controller()->set_name("adrc+pidccc");
   EXPECT_NO_THROW(job::build_contour_job(spec));
+}
+
+// docs/user-guide/delay-compensation.md carries the table netmc sim --list-compensators prints.
+TEST(DelayCompensation, TheDocsTableIsTheDescriptors) {
+  std::ifstream file(std::string(NETMC_TEST_DATA_DIR) + "/../../docs/user-guide/delay-compensation.md");
+  ASSERT_TRUE(file) << "docs/user-guide/delay-compensation.md";
+  std::stringstream docs;
+  docs << file.rdbuf();
+  const std::string table = job::delay_compensators_markdown_table();
+  EXPECT_NE(docs.str().find(table), std::string::npos)
+      << "docs/user-guide/delay-compensation.md lacks the descriptors' table; netmc sim --list-compensators prints it:\n"
+      << table;
 }
 
 }  // namespace
