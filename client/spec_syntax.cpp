@@ -260,12 +260,22 @@ netmc::v1::DelayProfile parse_delay(std::string_view text, std::string_view flag
     m.set_p_good_to_bad(key_quantity(keys, "p_gb", Quantity::plain, flag));
     m.set_p_bad_to_good(key_quantity(keys, "p_bg", Quantity::plain, flag));
   } else if (spec.kind == "trace") {
-    require_kind_argument(spec, flag, "trace:FILE.csv");
-    out.mutable_trace()->set_path(spec.argument);
+    require_kind_argument(spec, flag, "trace:FILE[,rtt_share=F]");
+    // FILE: a CSV of delays, or `ping -D` output (each round trip's rtt_share, default 0.5, is a
+    // one-way delay); the option is split off the end, a path may hold commas.
+    std::string path = spec.argument;
+    constexpr std::string_view kShare = ",rtt_share=";
+    if (const auto at = path.rfind(kShare); at != std::string::npos) {
+      const double share = parse_quantity(path.substr(at + kShare.size()), Quantity::plain, std::string(flag) + " rtt_share");
+      if (!(share > 0.0 && share <= 1.0)) fail(flag, "rtt_share: expected a number in (0, 1], e.g. 0.5");
+      out.mutable_trace()->set_round_trip_share(share);
+      path.resize(at);
+    }
+    out.mutable_trace()->set_path(path);
   } else {
     fail(flag, "unknown delay '" + spec.kind +
                    "' (expected none, constant:D, uniform:min=..,max=.., normal:mean=..,sd=.., "
-                   "pareto:scale=..,shape=.., markov:good=..,bad=..,p_gb=..,p_bg=.. or trace:FILE)");
+                   "pareto:scale=..,shape=.., markov:good=..,bad=..,p_gb=..,p_bg=.. or trace:FILE[,rtt_share=F])");
   }
   return out;
 }

@@ -211,7 +211,7 @@ void add_study_flags(CLI::App* app, StudyFlags& flags) {
                   "(amplitude/frequency in Hz/phase in rad; the error is x - x_d)");
   app->add_option("--controller", flags.controllers,
                   "NAME[,NAME...], each a run: " + job::ControllerRegistry::global().names_help());
-  app->add_option("--delay", flags.delay, "Loop delay on the controller->actuator link: none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=.. | pareto:scale=..,shape=.. | markov:good=A..B,bad=C..D,p_gb=..,p_bg=.. | trace:FILE.csv");
+  app->add_option("--delay", flags.delay, "Loop delay on the controller->actuator link: none | constant:1ms | uniform:min=0.3ms,max=0.8ms | normal:mean=..,sd=.. | pareto:scale=..,shape=.. | markov:good=A..B,bad=C..D,p_gb=..,p_bg=.. | trace:FILE.csv or trace:PING.txt[,rtt_share=0.5] (ping -D output: half of each round trip)");
   app->add_option("--seed", flags.seed, "Random seed")->check(CLI::NonNegativeNumber);
   add_job_override_flags(app, flags);
   app->add_option("--json", flags.json_path, "Write all iteration metrics as JSON");

@@ -53,5 +53,12 @@ std::unique_ptr<DelayModel> make_trace_delay(std::vector<double> delays_s);
 // empty file, a non-numeric delay or one outside [0, 60] s; and for a path that is not a regular
 // file, a file over 64 MiB or more than 1e6 samples.
 std::vector<double> load_delay_trace_csv(const std::string& path);
+// A delay trace from a CSV file (load_delay_trace_csv) or from a real network's measurement: the
+// output of `ping -D HOST` (or plain ping), recognised by its first line ("PING ...") or a reply
+// line ("... bytes from ... time=0.045 ms"). Each reply's round trip times `round_trip_share`
+// (default one half, a symmetric path) is one one-way delay, in order; lines without a reply
+// (headers, statistics, timeouts: a lost probe) are skipped. Same bounds and errors as the CSV,
+// and a share outside (0, 1].
+std::vector<double> load_delay_trace(const std::string& path, double round_trip_share = 0.5);
 
 }  // namespace netmc::netsim

@@ -70,6 +70,7 @@ void AxisStatePredictor::reset(double position_m) {
 }
 
 void AxisStatePredictor::command_sent(std::uint64_t sequence, double command, double expected_arrival_s) {
+  if (!std::isfinite(expected_arrival_s)) return;  // no instant to act at: not modelled
   const double applied = std::isfinite(command) ? std::clamp(command, -command_limit_, command_limit_) : 0.0;
   if (pending_.size() >= kMaxPendingCommands) {
     input_in_force_ = pending_.front().value;
@@ -81,6 +82,7 @@ void AxisStatePredictor::command_sent(std::uint64_t sequence, double command, do
 }
 
 void AxisStatePredictor::command_applied(std::uint64_t sequence, double arrival_s) {
+  if (!std::isfinite(arrival_s)) return;  // a report that is no time
   for (auto& command : pending_) {
     if (command.sequence == sequence) {
       command.arrival_s = arrival_s;

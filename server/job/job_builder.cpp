@@ -205,6 +205,11 @@ std::shared_ptr<const control::MultiSineReference> build_axis_reference(const ne
   return std::make_shared<control::MultiSineReference>(p);  // its messages name the field
 }
 
+// A trace of ping output: the share of each round trip taken as one delay (unset: a half).
+double round_trip_share(const netmc::v1::TraceDelay& trace) {
+  return trace.round_trip_share() != 0.0 ? trace.round_trip_share() : 0.5;
+}
+
 std::unique_ptr<netsim::DelayModel> build_delay(const DelayProfile& d) {
   switch (d.kind_case()) {
     case DelayProfile::KIND_NOT_SET:
@@ -239,7 +244,7 @@ std::unique_ptr<netsim::DelayModel> build_delay(const DelayProfile& d) {
       if (t.path().empty()) {
         throw std::invalid_argument("delay trace: expected a CSV file path or delays_s values");
       }
-      return netsim::make_trace_delay(netsim::load_delay_trace_csv(t.path()));
+      return netsim::make_trace_delay(netsim::load_delay_trace(t.path(), round_trip_share(t)));
     }
   }
   throw std::invalid_argument("delay: unknown kind");
@@ -488,11 +493,12 @@ void inline_delay_traces(netmc::v1::JobSpec& spec) {
     auto& delay = *link->mutable_delay();
     if (!delay.has_trace() || delay.trace().path().empty()) continue;
     if (delay.trace().delays_s_size() == 0) {
-      for (const double value : netsim::load_delay_trace_csv(delay.trace().path())) {
+      for (const double value : netsim::load_delay_trace(delay.trace().path(), round_trip_share(delay.trace()))) {
         delay.mutable_trace()->add_delays_s(value);
       }
     }
     delay.mutable_trace()->clear_path();
+    delay.mutable_trace()->clear_round_trip_share();  // applied: the delays are one-way
   }
 }
 

@@ -24,13 +24,8 @@ ContourServer::ContourServer(const ContourJob& job)
   }
 }
 
-double ContourServer::playout_delay_s() {
-  if (downlink_delays_s_.empty()) return 0.0;
-  quantile_scratch_ = downlink_delays_s_;
-  const auto rank = static_cast<std::size_t>(kPlayoutQuantile * static_cast<double>(quantile_scratch_.size() - 1) + 0.5);
-  std::nth_element(quantile_scratch_.begin(), quantile_scratch_.begin() + static_cast<std::ptrdiff_t>(rank),
-                   quantile_scratch_.end());
-  return quantile_scratch_[rank];
+double ContourServer::playout_delay_s() const {
+  return downlink_delays_s_.empty() ? 0.0 : *std::max_element(downlink_delays_s_.begin(), downlink_delays_s_.end());
 }
 
 control::AxisVector ContourServer::begin_iteration(std::size_t iteration) {
@@ -240,10 +235,13 @@ void ContourServer::record_applied(std::size_t axis, const std::vector<AppliedSe
     tau_ca_.add(a.arrival_time_s - a.send_time_s);
     if (!predictors_.empty()) {
       predictors_[axis].command_applied(a.sequence, a.arrival_time_s);
+      // A node's report is checked like any sample from the network: a travel that is no
+      // delay (not finite, negative, beyond a minute) plans nothing.
       const double travel = a.network_arrival_s - a.send_time_s;
-      if (downlink_delays_s_.size() < kDownlinkWindow) {
+      const bool is_delay = travel >= 0.0 && travel <= kMaxPlannedTravelS;
+      if (is_delay && downlink_delays_s_.size() < kDownlinkWindow) {
         downlink_delays_s_.push_back(travel);
-      } else {
+      } else if (is_delay) {
         downlink_delays_s_[downlink_next_] = travel;
         downlink_next_ = (downlink_next_ + 1) % kDownlinkWindow;
       }

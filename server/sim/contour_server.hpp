@@ -69,18 +69,17 @@ class ContourServer {
   // before their instant and act exactly then. (With the 95th percentile, 1 setpoint in 20 came
   // late: adrc+pidccc lost stability from 95 ms of U(0.3 ms, max) and adrc+ilccc's e_max grew
   // from 45 ms; with the longest, from 120 ms and 50 ms.)
-  double playout_delay_s();
+  double playout_delay_s() const;
 
   // Delay compensation (job.compensation): one predictor per axis, the positions and the
   // reference the controller is given instead of the newest measurement and the reference at t_k.
   std::vector<control::AxisStatePredictor> predictors_;
   control::AxisVector predicted_;
   control::GroupReference predicted_reference_;
-  static constexpr std::size_t kDownlinkWindow = 256;  // the delays the quantile is taken over
-  static constexpr double kPlayoutQuantile = 1.0;  // of the window: its longest
+  static constexpr std::size_t kDownlinkWindow = 256;  // the delays the longest is taken of
+  static constexpr double kMaxPlannedTravelS = 60.0;    // netsim's bound on a delay
   std::vector<double> downlink_delays_s_;   // a ring of the newest kDownlinkWindow
   std::size_t downlink_next_ = 0;
-  std::vector<double> quantile_scratch_;
   DelayStatistics feedback_age_;
 
   ContourJob job_;

@@ -35,7 +35,7 @@ std::filesystem::path scratch(const std::string& name) {
 
 TEST(NetmcCli, BadInputFailsWithOneMessageNamingTheFieldAndWritesNothing) {
   const auto json = scratch("bad.json");
-  const std::array<std::pair<const char*, const char*>, 9> cases{{
+  const std::array<std::pair<const char*, const char*>, 11> cases{{
       {"--controller adrc+fuzzy", "controller: unknown name 'adrc+fuzzy'"},
       {"--trajectory circle:r=10,period", "--trajectory"},
       {"--sample-period 0", "--sample-period"},
@@ -45,12 +45,40 @@ TEST(NetmcCli, BadInputFailsWithOneMessageNamingTheFieldAndWritesNothing) {
       {"--delay uniform:min=2ms,max=1ms", "downlink.delay"},
       {"--plant steam", "plant"},
       {"--iterations 0", "--iterations"},
+      {"--compensate smith", "--compensate: expected none | predictor, got 'smith'"},
+      {"--delay trace:ping.txt,rtt_share=2", "rtt_share: expected a number in (0, 1]"},
   }};
   for (const auto& [arguments, expected] : cases) {
     const Result result = run("sim " + std::string(arguments) + " --json " + json.string());
     EXPECT_NE(result.exit_code, 0) << arguments;
     EXPECT_NE(result.output.find(expected), std::string::npos) << arguments << "\n" << result.output;
     EXPECT_FALSE(std::filesystem::exists(json)) << arguments;
+  }
+}
+
+// A real network's measurement replayed: `ping -D` output as --delay trace:FILE, half of each
+// round trip by default, the whole with rtt_share=1.
+TEST(NetmcCli, PingOutputReplaysAsADelayTrace) {
+  const auto dir = scratch("ping-trace");
+  std::filesystem::create_directories(dir);
+  const auto ping = dir / "ping.txt";
+  std::ofstream(ping) << "PING 127.0.0.1 (127.0.0.1) 56(84) bytes of data.\n"
+                         "[1732780000.100000] 64 bytes from 127.0.0.1: icmp_seq=1 ttl=64 time=2.4 ms\n"
+                         "[1732780001.100000] 64 bytes from 127.0.0.1: icmp_seq=2 ttl=64 time=6.0 ms\n"
+                         "--- 127.0.0.1 ping statistics ---\n";
+  for (const auto& [option, longest] : {std::pair{"", 0.003}, std::pair{",rtt_share=1", 0.006}}) {
+    const auto json = dir / "run.json";
+    std::filesystem::remove(json);
+    const Result result = run("sim --controller adrc --iterations 1 --delay trace:" + ping.string() + option +
+                              " --json " + json.string());
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    std::ifstream file(json);
+    std::stringstream text;
+    text << file.rdbuf();
+    const std::string key = "\"tau_ca_max_s\": ";
+    const auto at = text.str().find(key);
+    ASSERT_NE(at, std::string::npos) << text.str();
+    EXPECT_NEAR(std::stod(text.str().substr(at + key.size())), longest, 1e-9) << option;
   }
 }
 

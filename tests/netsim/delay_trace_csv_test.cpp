@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -116,6 +117,48 @@ TEST(DelayTraceCsv, DevicesAndOversizeSamplesAreRefusedBeforeReading) {
 TEST(DelayTraceCsv, MissingFileIsNamed) {
   const std::string path = kDataDir + "/delay_trace_does_not_exist.csv";
   expect_invalid_argument([&] { load_delay_trace_csv(path); }, {path, "cannot open"});
+}
+
+// `ping -D` output as iputils prints it: a header, replies with time stamps, an unreachable
+// probe, the statistics.
+const char* const kPingOutput =
+    "PING 127.0.0.1 (127.0.0.1) 56(84) bytes of data.\n"
+    "[1732780000.100000] 64 bytes from 127.0.0.1: icmp_seq=1 ttl=64 time=12.4 ms\n"
+    "[1732780001.100000] 64 bytes from 127.0.0.1: icmp_seq=2 ttl=64 time=30.0 ms\n"
+    "[1732780002.100000] From 127.0.0.1 icmp_seq=3 Destination Host Unreachable\n"
+    "[1732780003.100000] 64 bytes from 127.0.0.1: icmp_seq=4 ttl=64 time=8 ms\n"
+    "\n"
+    "--- 127.0.0.1 ping statistics ---\n"
+    "4 packets transmitted, 3 received, 25% packet loss, time 3004ms\n"
+    "rtt min/avg/max/mdev = 8.000/16.800/30.000/9.400 ms\n";
+
+TEST(DelayTracePing, EachReplyGivesHalfItsRoundTripInOrder) {
+  TempCsv file(kPingOutput);
+  expect_delays(load_delay_trace(file.path()), {6.2e-3, 15e-3, 4e-3});
+  expect_delays(load_delay_trace(file.path(), 1.0), {12.4e-3, 30e-3, 8e-3});
+}
+
+TEST(DelayTracePing, ACsvFileIsReadAsBefore) {
+  expect_delays(load_delay_trace(kDataDir + "/delay_trace_ms.csv"), load_delay_trace_csv(kDataDir + "/delay_trace_ms.csv"));
+}
+
+TEST(DelayTracePing, MalformedRepliesAndEmptyOutputNameFileAndLine) {
+  TempCsv garbled("PING 127.0.0.1 (127.0.0.1) 56(84) bytes of data.\n64 bytes from 127.0.0.1: icmp_seq=1 time=abc ms\n");
+  expect_invalid_argument([&] { load_delay_trace(garbled.path()); },
+                          {"ping output", garbled.path() + ":2:", "time=NUMBER ms"});
+  TempCsv seconds("64 bytes from 127.0.0.1: icmp_seq=1 ttl=64 time=0.4 s\n");
+  expect_invalid_argument([&] { load_delay_trace(seconds.path()); }, {seconds.path() + ":1:"});
+  TempCsv huge("64 bytes from 127.0.0.1: icmp_seq=1 ttl=64 time=1e9 ms\n");
+  expect_invalid_argument([&] { load_delay_trace(huge.path()); }, {huge.path() + ":1:", "in [0, 60] s"});
+  TempCsv no_reply("PING 127.0.0.1 (127.0.0.1) 56(84) bytes of data.\n--- 127.0.0.1 ping statistics ---\n");
+  expect_invalid_argument([&] { load_delay_trace(no_reply.path()); }, {no_reply.path() + ":3:", "no replies"});
+}
+
+TEST(DelayTracePing, TheRoundTripShareMustBeAFraction) {
+  TempCsv file(kPingOutput);
+  for (const double share : {0.0, -0.5, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
+    expect_invalid_argument([&] { load_delay_trace(file.path(), share); }, {"share must be in (0, 1]"});
+  }
 }
 
 }  // namespace
