@@ -132,6 +132,30 @@ void BM_SimulatedIteration_Seed001_AdrcIlccc(benchmark::State& state) {
       static_cast<double>(kCycles), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// The same iteration behind a constant 20 ms downlink with --compensate predictor: the cost of
+// the delay compensation (an observer step and a prediction over 20 ms of the friction model per
+// axis and cycle, the playout at the axes).
+void BM_SimulatedIteration_Seed001_AdrcIlccc_Predictor20ms(benchmark::State& state) {
+  auto spec = netmc::cli::seed001_job("adrc+ilccc");
+  netmc::job::set_gain(*spec.mutable_controller(), "ilccc", "q_cutoff_hz", 20.0);
+  spec.mutable_downlink()->mutable_delay()->mutable_uniform()->set_min_s(0.020);
+  spec.mutable_downlink()->mutable_delay()->mutable_uniform()->set_max_s(0.020);
+  spec.mutable_compensation()->set_name("predictor");
+  netmc::sim::ContourJob job = netmc::job::build_contour_job(spec);
+  job.iterations = 100'000;
+  netmc::sim::ContourJobRunner runner(std::move(job));
+  for (auto _ : state) {
+    auto record = runner.run_iteration();
+    if (record.metrics.diverged) {
+      state.SkipWithError("simulated iteration diverged");
+      break;
+    }
+    benchmark::DoNotOptimize(record);
+  }
+  state.counters["cycles_per_second"] = benchmark::Counter(
+      static_cast<double>(kCycles), benchmark::Counter::kIsIterationInvariantRate);
+}
+
 // The whole default study: 4 runs (adrc, adrc+pidccc, adrc+ilccc, adrc+ilccc+q20hz) x 20
 // iterations, in process, on `threads` worker threads. The all-cores variant reports wall-clock
 // time (UseRealTime): the CPU time of the calling thread alone would understate the work.
@@ -273,6 +297,7 @@ BENCHMARK(BM_ControlStep_Adrc_TwoAxes);
 BENCHMARK(BM_NumericalTaskFrame_Spline);
 BENCHMARK(BM_NumericalTaskFrame_Lissajous);
 BENCHMARK(BM_SimulatedIteration_Seed001_AdrcIlccc)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SimulatedIteration_Seed001_AdrcIlccc_Predictor20ms)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Seed001Study_20Iterations)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Seed001Study_20Iterations_AllCores)->Unit(benchmark::kMillisecond)->UseRealTime();
 
