@@ -5,7 +5,17 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 # The test build carries the test suite's own controller (tests/components).
 bash scripts/build.sh -DNETMC_WERROR=ON -DNETMC_TEST_COMPONENTS=ON
+# Tests run with a private HOME and XDG_STATE_HOME (build/test-home, set by CMakeLists.txt): the
+# user's own may gain no file while they run.
+marker=$(mktemp)
 ctest --test-dir build --output-on-failure --parallel "$(nproc)" --timeout 600
+written=$(find "$HOME/.local" "$HOME/.config" -type f -newer "$marker" 2>/dev/null | head -20 || true)
+rm -f "$marker"
+if [ -n "$written" ]; then
+  echo "FAIL: the tests wrote under the real HOME ($HOME):" >&2
+  echo "$written" >&2
+  exit 1
+fi
 
 # The unit tests of the code that takes hostile input (pure libraries, job specs, the management
 # endpoint, the fuzz budget, the drives: map files, Modbus frames, plugins; FMU archives and their
