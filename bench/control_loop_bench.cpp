@@ -110,13 +110,8 @@ void BM_ContourErrorEstimate_Heart_Steffensen(benchmark::State& state) {
 void BM_ControlStep_AdrcIlccc_TwoAxes(benchmark::State& state) { control_step(state, "adrc+ilccc"); }
 void BM_ControlStep_Adrc_TwoAxes(benchmark::State& state) { control_step(state, "adrc"); }
 
-// One full ILC iteration (1601 cycles: plants, sensors, delayed links, controller, metrics) of
-// the seed001 adrc+ilccc job. The runner is built once; each benchmark iteration is the next ILC
-// iteration. The Q-filtered law is used because the paper's law drifts unstable after ~100
-// iterations (docs/reproductions/paper-001.md), which a long benchmark run would reach.
-void BM_SimulatedIteration_Seed001_AdrcIlccc(benchmark::State& state) {
-  auto spec = netmc::cli::seed001_job("adrc+ilccc");
-  netmc::job::set_gain(*spec.mutable_controller(), "ilccc", "q_cutoff_hz", 20.0);
+// Iterations of `spec`'s job, one per benchmark iteration, on one runner.
+void simulated_iterations(benchmark::State& state, const netmc::v1::JobSpec& spec) {
   netmc::sim::ContourJob job = netmc::job::build_contour_job(spec);
   job.iterations = 100'000;  // more than a benchmark run reaches, within a job's work ceiling
   netmc::sim::ContourJobRunner runner(std::move(job));
@@ -132,28 +127,29 @@ void BM_SimulatedIteration_Seed001_AdrcIlccc(benchmark::State& state) {
       static_cast<double>(kCycles), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+netmc::v1::JobSpec seed001_q_filtered_ilc() {
+  auto spec = netmc::cli::seed001_job("adrc+ilccc");
+  netmc::job::set_gain(*spec.mutable_controller(), "ilccc", "q_cutoff_hz", 20.0);
+  return spec;
+}
+
+// One full ILC iteration (1601 cycles: plants, sensors, delayed links, controller, metrics) of
+// the seed001 adrc+ilccc job. The runner is built once; each benchmark iteration is the next ILC
+// iteration. The Q-filtered law is used because the paper's law drifts unstable after ~100
+// iterations (docs/reproductions/paper-001.md), which a long benchmark run would reach.
+void BM_SimulatedIteration_Seed001_AdrcIlccc(benchmark::State& state) {
+  simulated_iterations(state, seed001_q_filtered_ilc());
+}
+
 // The same iteration behind a constant 20 ms downlink with --compensate predictor: the cost of
 // the delay compensation (an observer step and a prediction over 20 ms of the friction model per
 // axis and cycle, the playout at the axes).
 void BM_SimulatedIteration_Seed001_AdrcIlccc_Predictor20ms(benchmark::State& state) {
-  auto spec = netmc::cli::seed001_job("adrc+ilccc");
-  netmc::job::set_gain(*spec.mutable_controller(), "ilccc", "q_cutoff_hz", 20.0);
+  auto spec = seed001_q_filtered_ilc();
   spec.mutable_downlink()->mutable_delay()->mutable_uniform()->set_min_s(0.020);
   spec.mutable_downlink()->mutable_delay()->mutable_uniform()->set_max_s(0.020);
   spec.mutable_compensation()->set_name("predictor");
-  netmc::sim::ContourJob job = netmc::job::build_contour_job(spec);
-  job.iterations = 100'000;
-  netmc::sim::ContourJobRunner runner(std::move(job));
-  for (auto _ : state) {
-    auto record = runner.run_iteration();
-    if (record.metrics.diverged) {
-      state.SkipWithError("simulated iteration diverged");
-      break;
-    }
-    benchmark::DoNotOptimize(record);
-  }
-  state.counters["cycles_per_second"] = benchmark::Counter(
-      static_cast<double>(kCycles), benchmark::Counter::kIsIterationInvariantRate);
+  simulated_iterations(state, spec);
 }
 
 // The whole default study: 4 runs (adrc, adrc+pidccc, adrc+ilccc, adrc+ilccc+q20hz) x 20

@@ -141,12 +141,14 @@ std::vector<SweepConfiguration> expand_sweep(const SweepAxes& axes) {
   }
   const std::vector<std::uint64_t> seeds =
       axes.seeds.empty() ? std::vector<std::uint64_t>{} : parse_seed_axis(axes.seeds);
-  // The compensator axis: --compensate none,predictor makes each run once per compensator.
-  std::vector<std::string> compensators;
+  // The compensator axis: --compensate none,predictor makes each run once per compensator (name,
+  // spec; no spec for none).
+  std::vector<std::pair<std::string, std::optional<netmc::v1::CompensationSpec>>> compensators;
   if (!axes.fixed.compensate.empty()) {
-    compensators = split_list(axes.fixed.compensate);
+    for (const auto& name : split_list(axes.fixed.compensate)) {
+      compensators.emplace_back(name, job::parse_compensation(name, "--compensate"));
+    }
     if (compensators.empty()) throw std::invalid_argument("--compensate: expected NAME[,NAME...]");
-    for (const auto& name : compensators) job::parse_compensation(name, "--compensate");  // named as the flag
   }
 
   // Base studies: each preset (or the spec file), with each trajectory.
@@ -167,9 +169,9 @@ std::vector<SweepConfiguration> expand_sweep(const SweepAxes& axes) {
       if (!compensators.empty()) {
         std::vector<netmc::v1::JobSpec> runs;
         for (const auto& run : plan.jobs) {
-          for (const auto& name : compensators) {
+          for (const auto& [name, compensation] : compensators) {
             netmc::v1::JobSpec job = run;
-            if (const auto compensation = job::parse_compensation(name, "--compensate")) {
+            if (compensation) {
               *job.mutable_compensation() = *compensation;
               // Labelled RUN/COMPENSATOR, so that tables and figures keep the runs apart.
               job.set_name((run.name().empty() ? run.controller().name() : run.name()) + "/" + name);

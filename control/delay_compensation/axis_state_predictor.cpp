@@ -20,9 +20,8 @@ Eigen::Vector3d as_vector(const PredictedState& s) {
 }  // namespace
 
 AxisStatePredictor::AxisStatePredictor(const PredictionModel& model, double sample_period_s, double command_limit)
-    : model_(model),
-      sample_period_s_(require_positive(sample_period_s, "sample period")),
-      command_limit_(command_limit) {
+    : model_(model), command_limit_(command_limit) {
+  const double h = require_positive(sample_period_s, "sample period");
   require_finite(model.damping_per_s, "prediction model damping");
   require_finite(model.input_gain, "prediction model input gain");
   require_positive(model.observer_bandwidth_rad_s, "prediction model observer bandwidth");
@@ -35,7 +34,6 @@ AxisStatePredictor::AxisStatePredictor(const PredictionModel& model, double samp
   require_positive(model.coulomb_velocity_scale_m_s, "prediction model friction velocity scale");
   PredictionModel linear = model_;
   linear.coulomb_m_s2 = 0.0;
-  const double h = sample_period_s_;
   Eigen::Matrix3d phi;
   phi.col(0) = as_vector(advanced(linear, {1.0, 0.0, 0.0}, h));
   phi.col(1) = as_vector(advanced(linear, {0.0, 1.0, 0.0}, h));

@@ -46,6 +46,8 @@ class AxisStatePredictor {
   double predict_position(double time_s) const;
   // The observer's estimate at the newest sample (velocity, disturbance; position measured).
   PredictedState estimate() const;
+  // The commands remembered beside the one in force (at most kMaxPendingCommands).
+  std::size_t pending_commands() const { return pending_.size(); }
 
   // At most this many commands are remembered while no newer sample comes; older ones fold into
   // the input in force (a bound on memory whatever the link does).
@@ -68,7 +70,6 @@ class AxisStatePredictor {
   void settle_commands_until(double time_s);
 
   PredictionModel model_;
-  double sample_period_s_;
   double command_limit_;
   Eigen::Vector3d correction_gain_;  // the observer's, on the position innovation
 

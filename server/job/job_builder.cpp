@@ -384,6 +384,11 @@ void check_name(const std::string& name, const std::string& field) {
   }
 }
 
+std::size_t plant_axis_index(const std::vector<std::string>& axis_names, std::size_t axis) {
+  if (axis_names.size() != 1) return axis;
+  return axis_names.front() == "y" ? 1 : axis_names.front() == "z" ? 2 : 0;
+}
+
 std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec) {
   const std::size_t count = group_axis_count(spec);
   if (spec.axes_size() == 0) {
@@ -524,10 +529,8 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec, const JobBuild
     auto plants = remote_plant_set(spec.plant(), job.axis_count());
     for (auto& axis : plants.axes) job.axes.emplace_back(std::move(axis));
   } else if (single_axis) {
-    // One axis of a stage: named y (or z), it is the stage's Y (Z) axis with that axis's
-    // parameters (thesis 5.5 identifies each contouring axis's dead zone on its own).
-    const auto& name = job.axis_names.front();
-    const std::size_t index = name == "y" ? 1 : name == "z" ? 2 : 0;
+    // One axis of a stage, with that axis's parameters.
+    const std::size_t index = plant_axis_index(job.axis_names, 0);
     std::vector<plant::AxisOverrides> placed(index + 1);
     if (!overrides.empty()) placed[index] = overrides.front();
     auto plants = in_field("plant", [&] { return make_job_plant_set(spec.plant(), index + 1, placed); });

@@ -20,6 +20,10 @@ std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec);
 // Gives the job's axes new names, in group order, and moves what named the old ones (plant_axes,
 // the dead-zone inverse, per-axis gains) with them. Throws std::invalid_argument ("axes: ...").
 void rename_axes(netmc::v1::JobSpec& spec, const std::vector<std::string>& names);
+// Which axis of the named plant set axis `axis` of a job is: its place in the group, but a job of
+// one axis named y (or z) runs the plant's Y (Z) axis (thesis 5.5 identifies each contouring
+// axis's dead zone on its own).
+std::size_t plant_axis_index(const std::vector<std::string>& axis_names, std::size_t axis);
 // An axis or node name: 1-64 characters of A-Z a-z 0-9 _ . - (std::invalid_argument naming `field`).
 void check_name(const std::string& name, const std::string& field);
 // Fills the defaults of paper 001 where the spec leaves a field unset.

@@ -41,10 +41,9 @@ inline double resolve_evaluation_start(double requested_s, double reference_peri
   return requested_s > 0.0 ? requested_s : 2.0 * reference_period_s;
 }
 
-// How the server compensates the loop's delay (JobSpec.compensation): the compensator's name and,
-// for the state predictor, the model of each axis in group order.
+// How the server compensates the loop's delay (JobSpec.compensation, the state predictor): the
+// model of each axis in group order.
 struct DelayCompensation {
-  std::string name;                                  // "predictor"
   std::vector<control::PredictionModel> axis_models;  // one per axis
 };
 
