@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,9 @@ class ContourController {
   virtual std::vector<EstimateName> estimate_names() const { return {}; }
   // Their values after the last step(), into out[0 .. estimate_names().size()). No allocation.
   virtual void read_estimates(double* /*out*/) const {}
+  // A copy in the same state, to run ahead of the loop on predicted positions (packetized
+  // predictive control); none for a law that cannot be copied.
+  virtual std::unique_ptr<ContourController> clone() const { return nullptr; }
 };
 
 }  // namespace netmc::control

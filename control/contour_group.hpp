@@ -74,6 +74,9 @@ class GroupController {
   virtual std::string describe() const = 0;
   // Names and units of GroupCycle::estimates, fixed for the controller's life.
   virtual std::vector<EstimateName> estimate_names() const { return {}; }
+  // A copy in the same state, to run ahead of the loop on predicted positions (packetized
+  // predictive control); none for a law that cannot be copied.
+  virtual std::unique_ptr<GroupController> clone() const { return nullptr; }
 };
 
 }  // namespace netmc::control

@@ -51,5 +51,10 @@ const GroupCycle& PlanarGroupController::step(std::size_t cycle, const GroupRefe
   return cycle_;
 }
 
+std::unique_ptr<GroupController> PlanarGroupController::clone() const {
+  auto copy = controller_->clone();
+  if (!copy) return nullptr;
+  return std::make_unique<PlanarGroupController>(std::move(copy));
+}
 
 }  // namespace netmc::control

@@ -37,6 +37,7 @@ class PlanarGroupController final : public GroupController {
   void end_iteration() override { controller_->end_iteration(); }
   std::string describe() const override { return controller_->describe(); }
   std::vector<EstimateName> estimate_names() const override { return controller_->estimate_names(); }
+  std::unique_ptr<GroupController> clone() const override;
 
  private:
   std::unique_ptr<ContourController> controller_;

@@ -32,6 +32,7 @@ class ContouringController final : public ContourController {
   void end_iteration() override;
 
   std::string describe() const override;
+  std::unique_ptr<ContourController> clone() const override { return std::make_unique<ContouringController>(*this); }
   const ContourCompensator& compensator() const { return *compensator_; }
 
  private:

@@ -90,6 +90,20 @@ void AxisStatePredictor::command_applied(std::uint64_t sequence, double arrival_
   }
 }
 
+void AxisStatePredictor::command_played(std::uint64_t sequence, double arrival_s, double command) {
+  if (!std::isfinite(arrival_s) || !std::isfinite(command)) return;  // a report that is no time or no command
+  if (has_input_sequence_ && sequence <= input_sequence_) return;     // settled already
+  const double applied = std::clamp(command, -command_limit_, command_limit_);
+  const auto at = std::lower_bound(pending_.begin(), pending_.end(), sequence,
+                                   [](const Command& c, std::uint64_t s) { return c.sequence < s; });
+  if (at != pending_.end() && at->sequence == sequence) {
+    *at = {sequence, applied, arrival_s, true};
+    return;
+  }
+  if (pending_.size() >= kMaxPendingCommands) return;  // bounded whatever the reports say
+  pending_.insert(at, {sequence, applied, arrival_s, true});
+}
+
 void AxisStatePredictor::settle_commands_until(double time_s) {
   for (const auto& command : pending_) {
     // The axis keeps the newest sequence that has arrived: a late older one is dropped.
@@ -154,11 +168,19 @@ PredictedState AxisStatePredictor::estimate() const {
   return out;
 }
 
-double AxisStatePredictor::predict_position(double time_s) const {
+double AxisStatePredictor::predict_position(double time_s) const { return predict_state(time_s).position_m; }
+
+PredictedState AxisStatePredictor::predict_state(double time_s) const {
   PredictedState state = estimate();
-  if (!(time_s > state_time_s_)) return state.position_m;
+  if (!(time_s > state_time_s_)) return state;
   advance(state, state_time_s_, time_s, state_time_s_);
-  return state.position_m;
+  return state;
+}
+
+PredictedState AxisStatePredictor::run_on(PredictedState state, double duration_s, double command) const {
+  const double applied = std::isfinite(command) ? std::clamp(command, -command_limit_, command_limit_) : 0.0;
+  if (duration_s > 0.0) advance_model(model_, state, duration_s, applied);
+  return state;
 }
 
 }  // namespace netmc::control

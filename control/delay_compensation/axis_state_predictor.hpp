@@ -35,6 +35,10 @@ class AxisStatePredictor {
   // axis has not reported by the time of a newer sample than its planned instant was lost or is
   // late: it no longer counts (until a report says when it acted).
   void command_applied(std::uint64_t sequence, double arrival_s);
+  // The axis reports that `command` acted from `arrival_s` in place of command `sequence`
+  // (packetized predictive control: a lost or late command's slot played from an older
+  // sample's horizon). A sequence never sent is remembered in its place.
+  void command_played(std::uint64_t sequence, double arrival_s, double command);
   // The axis measured `position_m` at `sample_time_s` (sample `sequence`); older or repeated
   // samples than the newest are ignored.
   void measured(std::uint64_t sequence, double sample_time_s, double position_m);
@@ -44,6 +48,11 @@ class AxisStatePredictor {
   // The predicted position at `time_s`, from the newest sample and the commands in force and in
   // flight; the measured position itself for a time at or before the sample.
   double predict_position(double time_s) const;
+  // The whole predicted state at `time_s` (position, velocity, disturbance), as predict_position.
+  PredictedState predict_state(double time_s) const;
+  // `state` run on for `duration_s` under `command` (saturated as the axis saturates it), the
+  // disturbance held: a look-ahead past the commands sent (packetized predictive control).
+  PredictedState run_on(PredictedState state, double duration_s, double command) const;
   // The observer's estimate at the newest sample (velocity, disturbance; position measured).
   PredictedState estimate() const;
   // The commands remembered beside the one in force (at most kMaxPendingCommands).

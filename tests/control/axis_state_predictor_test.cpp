@@ -190,6 +190,33 @@ TEST(AxisStatePredictor, ACommandTheAxisNeverReportedStopsCountingOnceANewerSamp
   EXPECT_NEAR(predictor.predict_position(0.010), expected.position_m, 1e-15);
 }
 
+TEST(AxisStatePredictor, APlayedCommandTakesTheSlotOfTheOneThatDidNotComeAndRunOnContinuesThePrediction) {
+  // Packets: slot 1's own command (0.8) was lost; the axis played 0.3 there from slot 0's horizon,
+  // from 6 ms; slot 2 was never sent, the axis played -0.2 in it from 11 ms.
+  const PredictionModel model{.damping_per_s = -2.0, .input_gain = 10.0, .observer_bandwidth_rad_s = 100.0};
+  AxisStatePredictor predictor(model, 0.005);
+  predictor.reset(0.0);
+  predictor.measured(0, 0.0, 0.0);
+  predictor.command_sent(0, 1.0, 0.001);
+  predictor.command_sent(1, 0.8, 0.006);
+  predictor.command_played(0, 0.001, 1.0);
+  predictor.command_played(1, 0.006, 0.3);
+  predictor.command_played(2, 0.011, -0.2);
+  predictor.command_played(3, 0.016, std::nan(""));  // a report that is no command: ignored
+  PredictedState expected{0.0, 0.0, 0.0};
+  advance_model(model, expected, 0.001, 0.0);
+  advance_model(model, expected, 0.005, 1.0);
+  advance_model(model, expected, 0.005, 0.3);
+  advance_model(model, expected, 0.009, -0.2);
+  EXPECT_NEAR(predictor.predict_position(0.020), expected.position_m, 1e-15);
+  // run_on: the same model on from a predicted state, under a command saturated at the limit.
+  AxisStatePredictor limited(model, 0.005, 0.5);
+  PredictedState from = expected;
+  advance_model(model, expected, 0.004, 0.5);
+  EXPECT_NEAR(limited.run_on(from, 0.004, 2.0).position_m, expected.position_m, 1e-15);
+  EXPECT_EQ(limited.run_on(from, 0.0, 2.0).position_m, from.position_m);
+}
+
 TEST(AxisStatePredictor, ACommandBeyondTheLimitActsAsTheLimit) {
   const PredictionModel model{.damping_per_s = 0.0, .input_gain = 10.0, .observer_bandwidth_rad_s = 100.0};
   AxisStatePredictor limited(model, 0.005, 1.0), free(model, 0.005);
