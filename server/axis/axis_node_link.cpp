@@ -464,6 +464,18 @@ double planned_instant(const netmc::dds::Setpoint& setpoint) {
   return std::isfinite(acts_at) && acts_at > 0.0 ? acts_at : -std::numeric_limits<double>::infinity();
 }
 
+void submit_to(sim::AxisEndpoint& endpoint, double send_time_s, const netmc::dds::Setpoint& setpoint) {
+  if (setpoint.horizon().empty()) {
+    endpoint.submit_setpoint(send_time_s, setpoint.cycle(), setpoint.command(), planned_instant(setpoint));
+    return;
+  }
+  // A packet's instant is on the job's grid, 0 included; one that is no time plays on arrival.
+  const double acts_at = setpoint.acts_at_s();
+  endpoint.submit_packet(send_time_s, setpoint.cycle(),
+                         std::isfinite(acts_at) ? acts_at : -std::numeric_limits<double>::infinity(),
+                         std::vector<double>(setpoint.horizon().begin(), setpoint.horizon().end()));
+}
+
 void append_applied(netmc::dds::Feedback& feedback, const std::vector<sim::AppliedSetpoint>& applied) {
   for (const auto& a : applied) {
     if (feedback.applied().size() >= netmc::dds::kMaxApplied) break;
@@ -472,6 +484,7 @@ void append_applied(netmc::dds::Feedback& feedback, const std::vector<sim::Appli
     entry.send_time_s(a.send_time_s);
     entry.arrival_time_s(a.arrival_time_s);
     entry.network_arrival_s(a.network_arrival_s);
+    entry.horizon_index(a.horizon_index);
     feedback.applied().push_back(entry);
   }
 }

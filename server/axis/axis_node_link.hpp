@@ -216,6 +216,17 @@ void append_applied(netmc::dds::Feedback& feedback, const std::vector<sim::Appli
 // The instant a setpoint is meant to act (Setpoint.acts_at_s, delay compensation), for
 // AxisEndpoint::submit_setpoint; -inf (on arrival) for 0 or a value that is not finite.
 double planned_instant(const netmc::dds::Setpoint& setpoint);
+// Hands a setpoint that left for the actuator at `send_time_s` (job time) to `endpoint`: with a
+// horizon (packets) its horizon's commands, else its one.
+void submit_to(sim::AxisEndpoint& endpoint, double send_time_s, const netmc::dds::Setpoint& setpoint);
+// The endpoint's downlink counters of the iteration into a feedback or an axis event.
+template <typename Message>
+void set_downlink_counters(Message& message, const sim::AxisEndpoint& endpoint) {
+  message.lost_setpoints(endpoint.lost_setpoints());
+  message.stale_setpoints(endpoint.stale_setpoints());
+  message.horizon_cycles(endpoint.horizon_cycles());
+  message.held_cycles(endpoint.held_cycles());
+}
 // Fills the sample fields of a feedback.
 void set_sample(netmc::dds::Feedback& feedback, std::uint64_t cycle, double time_s,
                 const sim::AxisSample& sample);

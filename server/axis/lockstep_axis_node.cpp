@@ -138,8 +138,7 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
     case netmc::dds::CONTROL_FAULT_RESET:
       return;
   }
-  feedback.lost_setpoints(axis.endpoint->lost_setpoints());
-  feedback.stale_setpoints(axis.endpoint->stale_setpoints());
+  set_downlink_counters(feedback, *axis.endpoint);
   link_.publish(feedback);
 }
 
@@ -179,8 +178,7 @@ void LockstepAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   feedback.server(setpoint.server());
   feedback.job_id(setpoint.job_id());
   feedback.iteration(setpoint.iteration());
-  axis.endpoint->submit_setpoint(setpoint.send_time_s(), setpoint.cycle(), setpoint.command(),
-                                 planned_instant(setpoint));
+  submit_to(*axis.endpoint, setpoint.send_time_s(), setpoint);
   const std::uint64_t next = setpoint.cycle() + 1;
   if (next >= axis.cycles) {
     feedback.cycle(next);
@@ -190,8 +188,7 @@ void LockstepAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
     append_applied(feedback, axis.endpoint->advance_to(next_time));
     set_sample(feedback, next, next_time, axis.endpoint->sample());
   }
-  feedback.lost_setpoints(axis.endpoint->lost_setpoints());
-  feedback.stale_setpoints(axis.endpoint->stale_setpoints());
+  set_downlink_counters(feedback, *axis.endpoint);
   report_fault(setpoint.axis(), axis, setpoint.server(), setpoint.iteration());  // before the sample
   link_.publish(feedback);
 }

@@ -547,7 +547,7 @@ void RealtimeAxisNode::handle(const netmc::dds::Setpoint& setpoint) {
   }
   // The setpoint leaves for the actuator now: netsim's downlink delay starts here.
   const double now = link_.now_s() - axis.start_time_s;
-  axis.endpoint->submit_setpoint(now, setpoint.cycle(), setpoint.command(), planned_instant(setpoint));
+  submit_to(*axis.endpoint, now, setpoint);
   if (axis.server_send_times.size() >= kMaxSetpointsInFlight) axis.server_send_times.erase(axis.server_send_times.begin());
   axis.server_send_times[setpoint.cycle()] = setpoint.send_time_s();
   axis.last_setpoint_s = now;
@@ -590,6 +590,7 @@ void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clo
     applied.send_time_s(sent != axis.server_send_times.end() ? sent->second : a.send_time_s);
     applied.arrival_time_s(a.arrival_time_s);
     applied.network_arrival_s(a.network_arrival_s);
+    applied.horizon_index(a.horizon_index);
     feedback.applied().push_back(applied);
   };
   for (const auto& a : axis.applied_since_sample) add_applied(a);
@@ -626,8 +627,7 @@ void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clo
   }
   if (axis.endpoint->fault()) report_fault(axis_name, axis);  // before the sample
   set_sample(feedback, k, t, axis.endpoint->sample());
-  feedback.lost_setpoints(axis.endpoint->lost_setpoints());
-  feedback.stale_setpoints(axis.endpoint->stale_setpoints());
+  set_downlink_counters(feedback, *axis.endpoint);
   link_.publish(feedback);
   axis.feedback_sent[k % kFeedbackTimes] = OwnedAxis::FeedbackTime{k, Clock::now()};
   ++axis.samples;
@@ -646,8 +646,7 @@ void RealtimeAxisNode::end_iteration(const std::string& axis_name, OwnedAxis& ax
   event.iteration(axis.iteration);
   event.kind(netmc::dds::AXIS_ITERATION_ENDED);
   event.samples(axis.samples);
-  event.lost_setpoints(axis.endpoint->lost_setpoints());
-  event.stale_setpoints(axis.endpoint->stale_setpoints());
+  set_downlink_counters(event, *axis.endpoint);
   event.missing_setpoints(axis.commands_sent > axis.commands_received ? axis.commands_sent - axis.commands_received
                                                                       : 0);
   link_.publish_event(event);

@@ -110,6 +110,28 @@ void SupervisedAxis::begin_iteration(double position_m) {
   }
 }
 
+bool SupervisedAxis::accept_horizon(std::uint64_t cycle, const std::vector<double>& commands) {
+  if (fault_) return false;
+  for (std::size_t j = 0; j < commands.size(); ++j) {
+    if (!std::isfinite(commands[j])) {
+      trip(fmt::format("command {:g} (cycle {}, horizon entry {} of {}) not finite", commands[j], cycle, j,
+                       commands.size()));
+      return false;
+    }
+  }
+  return true;
+}
+
+bool SupervisedAxis::accept_horizon_entry(std::uint64_t cycle, std::size_t entry, std::size_t entries, double command) {
+  if (fault_) return false;
+  if (!(std::abs(command) <= limits_.command)) {
+    trip(fmt::format("command {:g} (cycle {}, horizon entry {} of {}) beyond the axis's limit {:g}", command, cycle,
+                     entry, entries, limits_.command));
+    return false;
+  }
+  return true;
+}
+
 void SupervisedAxis::apply_one(const Delivery& delivery) {
   if (!freshness_.accept(delivery.sequence) || fault_ || !running_) return;
   // Limits are enforced here, at the axis, whatever the server sent: the operator's trip,

@@ -49,6 +49,13 @@ class SupervisedAxis {
   // apply, then sample.
   void advance_to(double end_time_s, const std::vector<Delivery>& deliveries);
 
+  // A setpoint's horizon (packetized predictive control), checked whole as it arrives, before any
+  // of it acts: a command that is not finite trips the axis (a malformed sample), naming the
+  // setpoint's cycle and the command's place. False if it tripped (or had tripped).
+  bool accept_horizon(std::uint64_t cycle, const std::vector<double>& commands);
+  // Entry `entry` of such a horizon as it is about to act: beyond the operator's limit it trips
+  // the axis, named as above (a prediction that never acts does not). False if it tripped.
+  bool accept_horizon_entry(std::uint64_t cycle, std::size_t entry, std::size_t entries, double command);
   // No setpoint in time (watchdog) or the job ended: the drive's quick stop, no fault.
   void quick_stop();
   // A virtual-time drive in a quick stop or fault reaction runs it to its end (no one else moves

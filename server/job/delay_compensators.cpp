@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <charconv>
 #include <stdexcept>
 
 #include "plant/nominal_axis_model.hpp"
@@ -36,6 +37,20 @@ const std::vector<DelayCompensatorDescriptor>& delay_compensators() {
                    "the axis law's own (ADRC's observer model x'' = b0 u + d); d estimated, held over the prediction",
                    fmt::join(plants_with_nominal_models(), ", ")),
        "Smith 1957; Yi, An and Choi 2017; the filtered Smith predictor (arXiv 2506.23421)"},
+      {"packets", "packets[:horizon=N]",
+       fmt::format("packetized predictive control: each setpoint carries the commands for its cycle and the next N-1 "
+                   "(default {}, at most {}), computed by a copy of the controller run ahead on the positions the "
+                   "model predicts with the commands before them; the axis plays, each period, the command meant for "
+                   "it from the freshest setpoint it holds, so a lost or late setpoint is covered for up to N-1 "
+                   "periods, then the last command is held. The first command acts at the cycle's own instant (no "
+                   "delay planned)",
+                   kDefaultHorizon, sim::DelayCompensation::kMaxHorizon),
+       "as predictor (the laws that can be copied: contouring controllers of axis laws and compensators)",
+       "Bemporad 1998; Quevedo and Nešić 2011; Beger, Lin, Stanojevic and Hirche (arXiv 2512.11492)"},
+      {"predictor+packets", "predictor+packets[:horizon=N]",
+       "both: the first command planned over the measured delay as predictor does (on a grid of whole periods), "
+       "the next N-1 as packets computes them",
+       "as predictor", "as predictor and packets"},
   };
   return compensators;
 }
@@ -68,11 +83,35 @@ const DelayCompensatorDescriptor& require_compensator(std::string_view name, std
 
 }  // namespace
 
+bool takes_horizon(std::string_view name) { return name == "packets" || name == "predictor+packets"; }
+
 std::optional<netmc::v1::CompensationSpec> parse_compensation(std::string_view text, std::string_view flag) {
-  if (require_compensator(text, flag).name == "none") return std::nullopt;
+  const std::size_t colon = text.find(':');
+  const std::string_view name = text.substr(0, colon);
+  if (require_compensator(name, flag).name == "none" && colon == std::string_view::npos) return std::nullopt;
   netmc::v1::CompensationSpec spec;
-  spec.set_name(std::string(text));
+  spec.set_name(std::string(name));
+  if (colon == std::string_view::npos) return spec;
+  const std::string_view option = text.substr(colon + 1);
+  if (!takes_horizon(name)) {
+    throw std::invalid_argument(fmt::format("{}: {} takes no options, got '{}'", flag, name, option.substr(0, 80)));
+  }
+  constexpr std::string_view key = "horizon=";
+  const std::string_view value = option.starts_with(key) ? option.substr(key.size()) : std::string_view{};
+  unsigned horizon = 0;
+  const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), horizon);
+  if (!option.starts_with(key) || value.empty() || error != std::errc{} || end != value.data() + value.size() ||
+      horizon < 2 || horizon > sim::DelayCompensation::kMaxHorizon) {
+    throw std::invalid_argument(fmt::format("{}: expected {}:horizon=N with N an integer of 2 to {}, got '{}'", flag,
+                                            name, sim::DelayCompensation::kMaxHorizon, text.substr(0, 80)));
+  }
+  spec.set_horizon(horizon);
   return spec;
+}
+
+std::string compensation_text(const netmc::v1::CompensationSpec& spec) {
+  if (spec.horizon() == 0) return spec.name();
+  return fmt::format("{}:horizon={}", spec.name(), spec.horizon());
 }
 
 std::optional<sim::DelayCompensation> build_compensation(const netmc::v1::JobSpec& spec,
@@ -82,6 +121,18 @@ std::optional<sim::DelayCompensation> build_compensation(const netmc::v1::JobSpe
   const std::string& name = spec.compensation().name();
   if (require_compensator(name, "compensation.name").name == "none") return std::nullopt;
   sim::DelayCompensation compensation;
+  if (takes_horizon(name)) {
+    const std::uint32_t horizon = spec.compensation().horizon() == 0 ? kDefaultHorizon : spec.compensation().horizon();
+    if (horizon < 2 || horizon > sim::DelayCompensation::kMaxHorizon) {
+      throw std::invalid_argument(fmt::format("compensation.horizon: expected 2 to {} commands, got {}",
+                                              sim::DelayCompensation::kMaxHorizon, horizon));
+    }
+    compensation.horizon = horizon;
+    compensation.predict_delay = name != "packets";
+  } else if (spec.compensation().horizon() != 0) {
+    throw std::invalid_argument(fmt::format("compensation.horizon: {} takes none (packets and predictor+packets do), got {}",
+                                            name, spec.compensation().horizon()));
+  }
   const auto& registry = ControllerRegistry::global();
   const auto law_models = registry.prediction_models(spec.controller(), reference, axis_names, spec.sample_period_s());
   for (std::size_t axis = 0; axis < axis_names.size(); ++axis) {

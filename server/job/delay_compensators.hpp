@@ -4,6 +4,7 @@
 // laws it works with. --help, --list-compensators, the spec check and the docs' table
 // (docs/user-guide/delay-compensation.md) take them from here.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -23,14 +24,21 @@ struct DelayCompensatorDescriptor {
   std::string source;   // by the short names of docs/references.md
 };
 
+// Commands per setpoint of packets when the spec names none.
+inline constexpr std::uint32_t kDefaultHorizon = 8;
 // Every compensator, "none" first.
 const std::vector<DelayCompensatorDescriptor>& delay_compensators();
 // "none | predictor" for --compensate's help.
 std::string delay_compensator_syntax();
 // A Markdown table of the compensators (netmc sim --list-compensators).
 std::string delay_compensators_markdown_table();
-// --compensate's text as a spec: unset for "none". Throws std::invalid_argument naming `flag`.
+// --compensate's text (NAME or NAME:horizon=N) as a spec: unset for "none". Throws
+// std::invalid_argument naming `flag`.
 std::optional<netmc::v1::CompensationSpec> parse_compensation(std::string_view text, std::string_view flag);
+// The spec as --compensate writes it ("predictor+packets:horizon=8"), for results and labels.
+std::string compensation_text(const netmc::v1::CompensationSpec& spec);
+// Whether the compensator carries a horizon of commands (packetized predictive control).
+bool takes_horizon(std::string_view name);
 // The compensation of a job (unset when the spec names none): the compensator checked and the
 // prediction model of every axis taken from the controller's law. Throws std::invalid_argument
 // ("compensation: ...") for an unknown compensator or a law that cannot predict.

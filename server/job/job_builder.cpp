@@ -546,6 +546,12 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec, const JobBuild
   job.controller_factory = ControllerRegistry::global().resolve(spec.controller(), job.reference, job.axis_names,
                                                                 spec.sample_period_s(), options.controller_plugins);
   job.compensation = build_compensation(spec, job.reference, job.axis_names);
+  if (job.compensation && job.compensation->horizon > 1 && !job.make_controller()->clone()) {
+    throw std::invalid_argument("compensation: " + compensation_text(spec.compensation()) + " runs the law ahead on a "
+                                "copy of it, and controller '" + spec.controller().name().substr(0, 80) +
+                                "' cannot be copied (those that can: contouring controllers of axis laws and "
+                                "contour compensators, e.g. adrc, adrc+pidccc, adrc+ilccc)");
+  }
   job.uplink = build_link(spec.uplink(), "uplink");
   job.downlink = build_link(spec.downlink(), "downlink");
   job.sensor.resolution_m = spec.sensor().resolution_m();
@@ -687,6 +693,10 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
     out.set_feedback_age_p99_s(m.feedback_age_p99_s);
     out.set_feedback_age_max_s(m.feedback_age_max_s);
   }
+  if (m.packets) {
+    out.set_horizon_cycles(static_cast<std::uint32_t>(m.horizon_cycles));
+    out.set_held_cycles(static_cast<std::uint32_t>(m.held_cycles));
+  }
   return out;
 }
 
@@ -719,7 +729,7 @@ netmc::v1::RunResult describe_run(const netmc::v1::JobSpec& spec,
   result.set_sample_period_s(spec.sample_period_s());
   result.set_seed(spec.seed());
   result.set_evaluation_start_s(sim::resolve_evaluation_start(spec.evaluation_start_s(), reference_period_s));
-  if (spec.has_compensation()) result.set_compensation(spec.compensation().name());
+  if (spec.has_compensation()) result.set_compensation(compensation_text(spec.compensation()));
   return result;
 }
 

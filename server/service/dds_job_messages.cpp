@@ -50,7 +50,7 @@ void JobPublisher::end_iteration(std::size_t axis, std::uint32_t iteration, std:
 }
 
 void JobPublisher::command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle, double command,
-                           double send_time_s, double acts_at_s) {
+                           double send_time_s, double acts_at_s, std::span<const double> horizon) {
   netmc::dds::Setpoint setpoint;
   setpoint.axis(channels_.axes.at(axis));
   setpoint.server(channels_.server);
@@ -60,7 +60,17 @@ void JobPublisher::command(std::size_t axis, std::uint32_t iteration, std::uint6
   setpoint.command(command);
   setpoint.send_time_s(send_time_s);
   setpoint.acts_at_s(std::isfinite(acts_at_s) ? acts_at_s : 0.0);
+  setpoint.horizon().assign(horizon.begin(), horizon.end());
   dds::write_checked(channels_.setpoints.at(axis), &setpoint);
+}
+
+void JobPublisher::command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle,
+                           const sim::CycleCommand& command, double send_time_s, double acts_at_s) {
+  std::span<const double> horizon;
+  if (command.horizon_length > 0) {
+    horizon = std::span<const double>(command.horizon).subspan(axis * command.horizon_length, command.horizon_length);
+  }
+  this->command(axis, iteration, cycle, command.command[static_cast<Eigen::Index>(axis)], send_time_s, acts_at_s, horizon);
 }
 
 void JobPublisher::end_job() noexcept {

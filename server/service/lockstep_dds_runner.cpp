@@ -77,8 +77,7 @@ void LockstepDdsRunner::run(const std::function<void(const sim::IterationRecord&
           break;
         }
         for (std::uint32_t axis = 0; axis < axes; ++axis) {
-          publisher_.command(axis, iteration, k, command.command[static_cast<Eigen::Index>(axis)],
-                             command.send_time_s, command.acts_at_s);
+          publisher_.command(axis, iteration, k, command, command.send_time_s, command.acts_at_s);
         }
         responses = collect(iteration, k + 1);
         if (k + 1 == cycles) break;
@@ -87,7 +86,7 @@ void LockstepDdsRunner::run(const std::function<void(const sim::IterationRecord&
         for (std::uint32_t axis = 0; axis < axes; ++axis) {
           std::vector<sim::AppliedSetpoint> applied;
           for (const auto& a : responses[axis].applied()) {
-            applied.push_back({a.cycle(), a.send_time_s(), a.arrival_time_s(), a.network_arrival_s()});
+            applied.push_back({a.cycle(), a.send_time_s(), a.arrival_time_s(), a.network_arrival_s(), a.horizon_index()});
           }
           server_.record_applied(axis, applied);
         }
@@ -97,11 +96,14 @@ void LockstepDdsRunner::run(const std::function<void(const sim::IterationRecord&
                                   {responses[axis].position_m(), responses[axis].true_position_m()});
         }
       }
-      std::uint64_t lost = 0, stale = 0;
+      std::uint64_t lost = 0, stale = 0, horizon = 0, held = 0;
       for (const auto& response : responses) {
         lost += response.lost_setpoints();
         stale += response.stale_setpoints();
+        horizon += response.horizon_cycles();
+        held += response.held_cycles();
       }
+      server_.record_playout(horizon, held);
       const sim::IterationRecord record = server_.end_iteration(lost, stale);
       if (cancelled) break;  // a partial iteration is not reported
       publish_iteration_log(channels_, publisher_.job_id(), job_, record);

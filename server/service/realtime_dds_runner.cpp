@@ -68,7 +68,7 @@ void RealtimeDdsRunner::gather(std::uint32_t iteration, std::uint64_t cycle, Clo
     if (sample->cycle() == cycle && !spin_until) spin_until = last_heard_[axis] + spin;
     std::vector<sim::AppliedSetpoint> applied;
     for (const auto& a : sample->applied()) {
-      applied.push_back({a.cycle(), a.send_time_s(), a.arrival_time_s(), a.network_arrival_s()});
+      applied.push_back({a.cycle(), a.send_time_s(), a.arrival_time_s(), a.network_arrival_s(), a.horizon_index()});
     }
     server_.record_applied(axis, applied);
     // The feedback enters the emulated uplink when it reaches the server: real latency + netsim.
@@ -164,10 +164,12 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
         }
         const auto departure = Clock::now();
         const double sent_at = job_time_s();
-        // The planned travel is kept from the real departure, which a loaded host may delay.
-        const double acts_at = command.acts_at_s + (sent_at - command.send_time_s);
+        // The planned travel is kept from the real departure, which a loaded host may delay;
+        // with packets the instant stays on its grid (a late setpoint starts at a later one).
+        const double acts_at =
+            command.horizon_length > 0 ? command.acts_at_s : command.acts_at_s + (sent_at - command.send_time_s);
         for (std::size_t axis = 0; axis < axes; ++axis) {
-          publisher_.command(axis, iteration, k, command.command[static_cast<Eigen::Index>(axis)], sent_at, acts_at);
+          publisher_.command(axis, iteration, k, command, sent_at, acts_at);
         }
         ++commands_sent;
         server_.correct_compute_delay(std::chrono::duration<double>(departure - ready).count());
@@ -200,12 +202,15 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
       }
       while (channels_.feedback->try_take()) {
       }  // late samples of this iteration: counted by the axes, not used
-      std::uint64_t lost = 0, stale = 0, lost_feedback = 0;
+      std::uint64_t lost = 0, stale = 0, lost_feedback = 0, horizon = 0, held = 0;
       for (std::size_t axis = 0; axis < axes; ++axis) {
         lost += ended[axis].lost_setpoints() + ended[axis].missing_setpoints();
         stale += ended[axis].stale_setpoints();
+        horizon += ended[axis].horizon_cycles();
+        held += ended[axis].held_cycles();
         if (ended[axis].samples() > received_count_[axis]) lost_feedback += ended[axis].samples() - received_count_[axis];
       }
+      server_.record_playout(horizon, held);
       sim::IterationRecord record = server_.end_iteration(lost, stale);
       record.metrics.lost_feedback += lost_feedback;
       record.metrics.clock_uncertainty_s = uncertainty;

@@ -16,7 +16,8 @@ AxisEndpoint::AxisEndpoint(std::shared_ptr<drive::Drive> drive, const ContourJob
       downlink_(netsim::LinkModel(job.downlink.delay->clone(), job.downlink.loss->clone(),
                                   job_stream(job.seed, StreamKind::downlink, axis, 0))),
       seed_(job.seed),
-      index_(axis) {}
+      index_(axis),
+      sample_period_s_(job.sample_period_s) {}
 
 std::shared_ptr<drive::Drive> AxisEndpoint::simulated_drive(const ContourJob& job, std::size_t axis) {
   auto simulated = std::make_shared<drive::SimulatedDrive>(job.axes.at(axis)->clone(), "sim:" + job.plant_name);
@@ -28,6 +29,14 @@ void AxisEndpoint::begin_iteration(std::size_t iteration, double start_position_
   axis_.begin_iteration(start_position_m);
   planned_.clear();
   held_.clear();
+  packets_in_flight_.clear();
+  packets_waiting_.clear();
+  playing_.reset();
+  next_index_ = 0;
+  plays_ = 0;
+  stale_packets_ = horizon_cycles_ = held_cycles_ = 0;
+  last_instant_ = Instant::own;
+  last_instant_s_ = -std::numeric_limits<double>::infinity();
   downlink_.reset(job_stream(seed_, StreamKind::downlink, index_, iteration));
   lost_ = 0;
 }
@@ -49,6 +58,113 @@ bool AxisEndpoint::submit_setpoint(double send_time_s, std::uint64_t sequence, d
     planned_.push_back({sequence, acts_at_s});
   }
   return delivered;
+}
+
+bool AxisEndpoint::submit_packet(double send_time_s, std::uint64_t sequence, double acts_at_s,
+                                 std::vector<double> commands) {
+  if (commands.empty()) return false;  // nothing to play: the caller sends at least the setpoint's own
+  if (!downlink_.send(send_time_s, sequence, commands.front())) {
+    ++lost_;
+    return false;
+  }
+  if (packets_in_flight_.size() >= kMaxPlanned) packets_in_flight_.erase(packets_in_flight_.begin());
+  packets_in_flight_.push_back({sequence, send_time_s, acts_at_s, 0.0, std::move(commands)});
+  return true;
+}
+
+std::pair<double, double> AxisEndpoint::first_instant(const Packet& packet) const {
+  if (!(packet.network_arrival_s > packet.acts_at_s)) return {packet.acts_at_s, 0.0};
+  // The tolerance keeps an arrival a rounding error after an instant on that instant.
+  const double index = std::ceil((packet.network_arrival_s - packet.acts_at_s) / sample_period_s_ - 1e-9);
+  return {packet.acts_at_s + index * sample_period_s_, index};
+}
+
+std::optional<double> AxisEndpoint::next_arrival_s() const {
+  auto next = downlink_.next_arrival_s();
+  const auto earlier = [&](double at) {
+    if (!next || at < *next) next = at;
+  };
+  if (!held_.empty()) earlier(held_.front().delivery.arrival_time_s);
+  for (const auto& packet : packets_waiting_) earlier(first_instant(packet).first);
+  if (playing_ && next_index_ < playing_->commands.size()) {
+    earlier(playing_->acts_at_s + static_cast<double>(next_index_) * sample_period_s_);
+  }
+  return next;
+}
+
+void AxisEndpoint::play_packets(std::vector<Delivery>& deliveries, double until_s) {
+  network_arrivals_.clear();
+  horizon_indices_.clear();
+  packet_sequences_.clear();
+  for (const auto& delivery : deliveries) {
+    const auto it = std::find_if(packets_in_flight_.begin(), packets_in_flight_.end(),
+                                 [&](const Packet& p) { return p.sequence == delivery.sequence; });
+    if (it == packets_in_flight_.end()) continue;
+    Packet packet = std::move(*it);
+    packets_in_flight_.erase(it);
+    packet.network_arrival_s = delivery.arrival_time_s;
+    // Held at most kMaxHoldS, as a planned setpoint: a faulty plan cannot park the axis.
+    if (!std::isfinite(packet.acts_at_s)) packet.acts_at_s = packet.network_arrival_s;
+    packet.acts_at_s = std::min(packet.acts_at_s, packet.network_arrival_s + kMaxHoldS);
+    if (!axis_.accept_horizon(packet.sequence, packet.commands)) continue;
+    if (packets_waiting_.size() >= kMaxPlanned) packets_waiting_.erase(packets_waiting_.begin());
+    packets_waiting_.push_back(std::move(packet));
+  }
+  deliveries.clear();
+  const double h = sample_period_s_;
+  const double same_instant = h / 4.0;
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  while (true) {
+    // Not fresher than the one playing, or arrived after its horizon's end: never plays.
+    std::erase_if(packets_waiting_, [&](const Packet& p) {
+      const bool stale = (playing_ && p.sequence <= playing_->sequence) ||
+                         first_instant(p).second >= static_cast<double>(p.commands.size());
+      if (stale) ++stale_packets_;
+      return stale;
+    });
+    double start = kNever;
+    for (const auto& p : packets_waiting_) start = std::min(start, first_instant(p).first);
+    const double next = playing_ ? playing_->acts_at_s + static_cast<double>(next_index_) * h : kNever;
+    const double at = std::min(start, next);
+    if (!(at <= until_s)) break;
+    // The freshest setpoint that begins at this instant takes over.
+    auto fresh = packets_waiting_.end();
+    for (auto it = packets_waiting_.begin(); it != packets_waiting_.end(); ++it) {
+      if (first_instant(*it).first <= at + same_instant && (fresh == packets_waiting_.end() || it->sequence > fresh->sequence)) {
+        fresh = it;
+      }
+    }
+    if (fresh != packets_waiting_.end()) {
+      // A setpoint that arrived at the very instant an older one's horizon (or the hold) took:
+      // that instant is its, not covered.
+      if (std::abs(at - last_instant_s_) <= same_instant) {
+        if (last_instant_ == Instant::horizon) --horizon_cycles_;
+        if (last_instant_ == Instant::held) --held_cycles_;
+      }
+      next_index_ = static_cast<std::size_t>(first_instant(*fresh).second);
+      playing_ = std::move(*fresh);
+      packets_waiting_.erase(fresh);
+    } else if (next_index_ >= playing_->commands.size()) {
+      // Nothing left to play: the last command holds, at every instant until a fresh one begins.
+      const double last = std::min(until_s, start - same_instant);
+      const double instants = std::max(1.0, std::floor((last - next) / h + 1e-9) + 1.0);
+      held_cycles_ += static_cast<std::uint64_t>(instants);
+      next_index_ += static_cast<std::size_t>(instants);
+      last_instant_ = Instant::held;
+      last_instant_s_ = next + (instants - 1.0) * h;
+      continue;
+    }
+    const double command = playing_->commands[next_index_];
+    if (!axis_.accept_horizon_entry(playing_->sequence, next_index_, playing_->commands.size(), command)) break;
+    deliveries.push_back({playing_->send_time_s, at, ++plays_, command});
+    network_arrivals_.push_back(playing_->network_arrival_s);
+    horizon_indices_.push_back(static_cast<std::uint32_t>(next_index_));
+    packet_sequences_.push_back(playing_->sequence);
+    if (next_index_ > 0) ++horizon_cycles_;
+    last_instant_ = next_index_ > 0 ? Instant::horizon : Instant::own;
+    last_instant_s_ = at;
+    ++next_index_;
+  }
 }
 
 void AxisEndpoint::play_out(std::vector<Delivery>& deliveries, double until_s) {
@@ -87,23 +203,38 @@ void AxisEndpoint::play_out(std::vector<Delivery>& deliveries, double until_s) {
 
 const std::vector<AppliedSetpoint>& AxisEndpoint::record(const std::vector<Delivery>& deliveries) {
   applied_.clear();
+  const bool packets = !horizon_indices_.empty();
   for (std::size_t i = 0; i < deliveries.size(); ++i) {
     const auto& d = deliveries[i];
-    applied_.push_back({d.sequence, d.send_time_s, d.arrival_time_s, network_arrivals_[i]});
+    if (packets) {
+      applied_.push_back({packet_sequences_[i], d.send_time_s, d.arrival_time_s, network_arrivals_[i], horizon_indices_[i]});
+    } else {
+      applied_.push_back({d.sequence, d.send_time_s, d.arrival_time_s, network_arrivals_[i], 0});
+    }
   }
   return applied_;
 }
 
+void AxisEndpoint::receive(double until_s) {
+  downlink_.receive_until(until_s, deliveries_);
+  if (!packets_in_flight_.empty() || !packets_waiting_.empty() || playing_) {
+    play_packets(deliveries_, until_s);
+  } else {
+    horizon_indices_.clear();
+    play_out(deliveries_, until_s);
+  }
+}
+
 const std::vector<AppliedSetpoint>& AxisEndpoint::advance_to(double end_time_s) {
-  downlink_.receive_until(end_time_s, deliveries_);
-  play_out(deliveries_, end_time_s);
+  // An instant at the end itself is played now (the predictor counts on reports complete up to
+  // the sample): a setpoint that arrives at that very instant takes it over in the next call.
+  receive(end_time_s);
   axis_.advance_to(end_time_s, deliveries_);
   return record(deliveries_);
 }
 
 const std::vector<AppliedSetpoint>& AxisEndpoint::apply_arrived(double now_s) {
-  downlink_.receive_until(now_s, deliveries_);
-  play_out(deliveries_, now_s);
+  receive(now_s);
   axis_.apply(deliveries_, now_s);
   return record(deliveries_);
 }

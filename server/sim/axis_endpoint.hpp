@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "netsim/delayed_channel.hpp"
@@ -31,6 +32,9 @@ struct AppliedSetpoint {
   // When it reached the axis, where a setpoint planned for a later instant was held until then
   // (delay compensation); the same as arrival_time_s otherwise.
   double network_arrival_s = 0.0;
+  // Packetized predictive control: which of the setpoint's commands acted (0: its own; j: the
+  // one meant for j periods after it, its own successor lost or late).
+  std::uint32_t horizon_index = 0;
 };
 
 class AxisEndpoint {
@@ -51,6 +55,14 @@ class AxisEndpoint {
   // a later one acts on arrival, as every setpoint without a plan does.
   bool submit_setpoint(double send_time_s, std::uint64_t sequence, double command,
                        double acts_at_s = -std::numeric_limits<double>::infinity());
+  // Packetized predictive control: setpoint `sequence` carries `commands`, the first meant to act
+  // at `acts_at_s`, each next one a period later. The axis plays, at each of those instants, the
+  // command meant for it from the freshest setpoint it holds; a setpoint that arrives after its
+  // first instant starts at its next one; with none left, the last command is held. A command
+  // that is not finite trips the axis on arrival, one beyond its limit when it would act
+  // (SupervisedAxis::accept_horizon, accept_horizon_entry).
+  // False if the downlink drops it.
+  bool submit_packet(double send_time_s, std::uint64_t sequence, double acts_at_s, std::vector<double> commands);
   // Integrate to `end_time_s`, applying the setpoints that arrive on the way, and read the drive
   // there; the result is valid until the next call (one buffer, no allocation per cycle).
   const std::vector<AppliedSetpoint>& advance_to(double end_time_s);
@@ -59,11 +71,8 @@ class AxisEndpoint {
   // When the next setpoint in flight on the emulated downlink arrives (a drive on its own time
   // is written then).
   // A setpoint held for its planned instant counts as arriving then.
-  std::optional<double> next_arrival_s() const {
-    auto next = downlink_.next_arrival_s();
-    if (!held_.empty() && (!next || held_.front().delivery.arrival_time_s < *next)) next = held_.front().delivery.arrival_time_s;
-    return next;
-  }
+  // With packets: the next instant a command plays or the horizon runs out.
+  std::optional<double> next_arrival_s() const;
 
   // Watchdog: no setpoint in time, so the drive is told to quick stop.
   void hold() { axis_.quick_stop(); }
@@ -72,7 +81,9 @@ class AxisEndpoint {
   drive::SupervisedAxis& supervised() { return axis_; }
 
   std::uint64_t lost_setpoints() const { return lost_; }
-  std::uint64_t stale_setpoints() const { return axis_.stale_setpoints(); }
+  std::uint64_t stale_setpoints() const { return axis_.stale_setpoints() + stale_packets_; }
+  std::uint64_t horizon_cycles() const { return horizon_cycles_; }
+  std::uint64_t held_cycles() const { return held_cycles_; }
 
   // Plans kept for setpoints in flight (one each; the oldest is forgotten beyond it).
   static constexpr std::size_t kMaxPlanned = 4096;
@@ -82,6 +93,8 @@ class AxisEndpoint {
  private:
   using Delivery = netsim::DelayedChannel<double>::Delivery;
   const std::vector<AppliedSetpoint>& record(const std::vector<Delivery>& deliveries);
+  // The deliveries due by `until_s` into deliveries_, through the playout of either kind.
+  void receive(double until_s);
   // Holds the deliveries planned for later than their arrival and releases, into `deliveries`,
   // those due by `until_s` at their planned instant, sorted as the channel sorts.
   void play_out(std::vector<Delivery>& deliveries, double until_s);
@@ -98,6 +111,30 @@ class AxisEndpoint {
   std::vector<Held> held_;        // arrived, waiting for their instant
   std::vector<double> network_arrivals_;  // of deliveries_, for record()
 
+  // Packetized predictive control (submit_packet).
+  struct Packet {
+    std::uint64_t sequence = 0;
+    double send_time_s = 0.0;
+    double acts_at_s = 0.0;
+    double network_arrival_s = 0.0;
+    std::vector<double> commands;
+  };
+  // Turns the packets delivered by `until_s` into the drive's deliveries, one per instant played.
+  void play_packets(std::vector<Delivery>& deliveries, double until_s);
+  // The first of `packet`'s instants at or after its arrival, and its index there.
+  std::pair<double, double> first_instant(const Packet& packet) const;
+  std::vector<Packet> packets_in_flight_;  // submitted, not yet arrived (at most kMaxPlanned)
+  std::vector<Packet> packets_waiting_;    // arrived, not yet playing
+  std::optional<Packet> playing_;          // the freshest that has begun to play
+  std::size_t next_index_ = 0;             // of playing_'s commands, at its next instant
+  std::uint64_t plays_ = 0;                // the drive's sequence: one per command played
+  std::vector<std::uint32_t> horizon_indices_;  // of deliveries_, for record()
+  std::vector<std::uint64_t> packet_sequences_;  // of deliveries_, for record()
+  std::uint64_t stale_packets_ = 0, horizon_cycles_ = 0, held_cycles_ = 0;
+  enum class Instant { own, horizon, held };  // what the last instant played
+  Instant last_instant_ = Instant::own;
+  double last_instant_s_ = -std::numeric_limits<double>::infinity();
+
   drive::SupervisedAxis axis_;
   plant::PositionSensor sensor_;
   netsim::DelayedChannel<double> downlink_;
@@ -105,6 +142,7 @@ class AxisEndpoint {
   std::vector<AppliedSetpoint> applied_;
   std::uint64_t seed_;
   std::size_t index_;
+  double sample_period_s_;
   std::uint64_t lost_ = 0;
 };
 

@@ -75,6 +75,8 @@ void ContourJob::validate() const {
           "delay: every link needs a delay and a loss model");
   require(!compensation || compensation->axis_models.size() == axis_count(),
           "compensation: expected a prediction model per axis of the group");
+  require(!compensation || (compensation->horizon >= 1 && compensation->horizon <= DelayCompensation::kMaxHorizon),
+          "compensation: expected a horizon of 1 to " + std::to_string(DelayCompensation::kMaxHorizon) + " commands");
   require(!initial_position || (static_cast<std::size_t>(initial_position->size()) == axis_count() &&
                                 initial_position->allFinite()),
           "initial_position: expected finite coordinates, one per axis");

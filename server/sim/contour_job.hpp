@@ -41,10 +41,14 @@ inline double resolve_evaluation_start(double requested_s, double reference_peri
   return requested_s > 0.0 ? requested_s : 2.0 * reference_period_s;
 }
 
-// How the server compensates the loop's delay (JobSpec.compensation, the state predictor): the
-// model of each axis in group order.
+// How the server compensates the loop's delay (JobSpec.compensation): the model of each axis in
+// group order, whether the first command is planned over the measured delay (the state
+// predictor), and how many commands each setpoint carries (packetized predictive control).
 struct DelayCompensation {
   std::vector<control::PredictionModel> axis_models;  // one per axis
+  bool predict_delay = true;     // "predictor": the command acts at the instant it was planned for
+  std::size_t horizon = 1;       // commands per setpoint: 1, or "packets:horizon=N"
+  static constexpr std::size_t kMaxHorizon = 64;  // bounds a setpoint sample and a node's buffer
 };
 
 // The reference a job's group follows: a planar trajectory (two axes), a circle in space (three

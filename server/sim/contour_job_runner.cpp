@@ -26,8 +26,14 @@ IterationRecord ContourJobRunner::run_iteration() {
     const CycleCommand command = server_.compute_cycle(k);
     if (command.diverged) break;
     for (std::size_t axis = 0; axis < axes_.size(); ++axis) {
-      axes_[axis].submit_setpoint(command.send_time_s, k, command.command[static_cast<Eigen::Index>(axis)],
-                                  command.acts_at_s);
+      if (command.horizon_length > 0) {
+        const auto first = command.horizon.begin() + static_cast<std::ptrdiff_t>(axis * command.horizon_length);
+        axes_[axis].submit_packet(command.send_time_s, k, command.acts_at_s,
+                                  {first, first + static_cast<std::ptrdiff_t>(command.horizon_length)});
+      } else {
+        axes_[axis].submit_setpoint(command.send_time_s, k, command.command[static_cast<Eigen::Index>(axis)],
+                                    command.acts_at_s);
+      }
     }
     if (k + 1 == cycles) break;
     // Axis nodes apply setpoints as they arrive during [t_k, t_k+1).
@@ -35,11 +41,14 @@ IterationRecord ContourJobRunner::run_iteration() {
       server_.record_applied(axis, axes_[axis].advance_to(static_cast<double>(k + 1) * h));
     }
   }
-  std::uint64_t lost = 0, stale = 0;
+  std::uint64_t lost = 0, stale = 0, horizon = 0, held = 0;
   for (const auto& axis : axes_) {
     lost += axis.lost_setpoints();
     stale += axis.stale_setpoints();
+    horizon += axis.horizon_cycles();
+    held += axis.held_cycles();
   }
+  server_.record_playout(horizon, held);
   ++completed_;
   return server_.end_iteration(lost, stale);
 }

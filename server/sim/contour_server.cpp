@@ -21,6 +21,11 @@ ContourServer::ContourServer(const ContourJob& job)
     for (const auto& model : job_.compensation->axis_models) {
       predictors_.emplace_back(model, job_.sample_period_s, job_.command_limit);
     }
+    if (job_.compensation->horizon > 1) {
+      horizon_ = job_.compensation->horizon;
+      slot_origin_s_ = job_.compute_delay_s;
+      sent_horizons_.resize(kSentHorizons);
+    }
   }
 }
 
@@ -41,6 +46,8 @@ control::AxisVector ContourServer::begin_iteration(std::size_t iteration) {
   }
   predicted_ = start;
   feedback_age_.clear();
+  last_slot_ = -1;
+  for (auto& sent : sent_horizons_) sent.length = 0;
 
   record_ = IterationRecord{};
   record_.metrics.iteration = iteration;
@@ -138,7 +145,19 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
     // The controller acts on the instant its command will act: each axis's state predicted from
     // its newest sample over that sample's age plus the setpoint's expected travel, and the
     // reference there. Without delay the instant is t_k and nothing changes.
-    const double acts_at = out.send_time_s + playout_delay_s();
+    double acts_at = out.send_time_s + playout_delay_s();
+    // With packets the instant is on the grid; without the predictor it is the cycle's own.
+    std::int64_t slot = static_cast<std::int64_t>(cycle);
+    if (horizon_ > 0) {
+      const double h = job_.sample_period_s;
+      if (job_.compensation->predict_delay) {
+        // A bounded plan (kMaxPlannedTravelS) keeps the slot far inside an int64.
+        slot = std::max(slot, static_cast<std::int64_t>(std::ceil((acts_at - slot_origin_s_) / h - 1e-9)));
+      }
+      slot = std::max(slot, last_slot_ + 1);
+      last_slot_ = slot;
+      acts_at = slot_origin_s_ + static_cast<double>(slot) * h;
+    }
     out.acts_at_s = acts_at;
     for (std::size_t axis = 0; axis < predictors_.size(); ++axis) {
       const auto i = static_cast<Eigen::Index>(axis);
@@ -153,7 +172,12 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
     }
     computed = &controller_->step(cycle, *planned, predicted_);
     for (std::size_t axis = 0; axis < predictors_.size(); ++axis) {
-      predictors_[axis].command_sent(cycle, computed->command[static_cast<Eigen::Index>(axis)], acts_at);
+      predictors_[axis].command_sent(static_cast<std::uint64_t>(slot), computed->command[static_cast<Eigen::Index>(axis)],
+                                     acts_at);
+    }
+    if (horizon_ > 0 && computed->command.allFinite()) {
+      out.command = computed->command;
+      plan_horizon(cycle, acts_at, out);
     }
   }
   const control::GroupCycle& step = *computed;
@@ -223,6 +247,52 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
   return out;
 }
 
+void ContourServer::plan_horizon(std::uint64_t cycle, double acts_at, CycleCommand& out) {
+  const std::size_t axes = predictors_.size();
+  const std::size_t length = std::min<std::size_t>(horizon_, cycles_ - cycle);
+  out.horizon_length = length;
+  out.horizon.assign(axes * length, 0.0);
+  for (std::size_t axis = 0; axis < axes; ++axis) out.horizon[axis * length] = out.command[static_cast<Eigen::Index>(axis)];
+  if (length > 1) {
+    // The law itself, run ahead on its own copy: each next command from the positions predicted
+    // with the ones before it, for the reference at its instant (Bemporad 1998).
+    // The model runs on from the state predicted at the first instant, a period at a time under
+    // each command (no other command acts after that instant: the grid's slots increase).
+    auto ahead = controller_->clone();
+    lookahead_states_.resize(axes);
+    for (std::size_t axis = 0; axis < axes; ++axis) lookahead_states_[axis] = predictors_[axis].predict_state(acts_at);
+    lookahead_predicted_ = predicted_;
+    const double h = job_.sample_period_s;
+    for (std::size_t j = 1; j < length; ++j) {
+      const double at = acts_at + static_cast<double>(j) * h;
+      for (std::size_t axis = 0; axis < axes; ++axis) {
+        const auto& predictor = predictors_[axis];
+        auto& state = lookahead_states_[axis];
+        state = predictor.run_on(state, h, out.horizon[axis * length + j - 1]);
+        if (predictor.has_measurement()) lookahead_predicted_[static_cast<Eigen::Index>(axis)] = state.position_m;
+      }
+      contour_->sample(at, lookahead_reference_);
+      const control::GroupCycle& step = ahead->step(cycle + j, lookahead_reference_, lookahead_predicted_);
+      // Saturated as the axis would: a prediction is no reason to trip the operator's limit.
+      for (std::size_t axis = 0; axis < axes; ++axis) {
+        out.horizon[axis * length + j] =
+            std::clamp(step.command[static_cast<Eigen::Index>(axis)], -job_.command_limit, job_.command_limit);
+      }
+    }
+  }
+  SentHorizon& sent = sent_horizons_[cycle % kSentHorizons];
+  sent.cycle = cycle;
+  sent.length = length;
+  sent.commands = out.horizon;
+}
+
+void ContourServer::record_playout(std::uint64_t horizon_cycles, std::uint64_t held_cycles) {
+  if (horizon_ == 0) return;
+  record_.metrics.packets = true;
+  record_.metrics.horizon_cycles = horizon_cycles;
+  record_.metrics.held_cycles = held_cycles;
+}
+
 void ContourServer::correct_compute_delay(double measured_s) {
   tau_cc_.replace_last(measured_s);
 }
@@ -233,8 +303,20 @@ void ContourServer::record_applied(std::size_t axis, const std::vector<AppliedSe
         a.arrival_time_s - static_cast<double>(a.sequence) * job_.sample_period_s;
     tau_.add(loop_delay);
     tau_ca_.add(a.arrival_time_s - a.send_time_s);
-    if (!predictors_.empty()) {
+    if (horizon_ > 0) {
+      // What acted and when, in its slot of the grid: the setpoint's own command or one of its
+      // horizon's (a report names a cycle and an index; the command is the one sent then).
+      const SentHorizon& sent = sent_horizons_[a.sequence % kSentHorizons];
+      const double slot = std::round((a.arrival_time_s - slot_origin_s_) / job_.sample_period_s);
+      if (sent.length > 0 && sent.cycle == a.sequence && a.horizon_index < sent.length && slot >= 0.0 &&
+          slot <= static_cast<double>(last_slot_ + static_cast<std::int64_t>(horizon_))) {
+        predictors_[axis].command_played(static_cast<std::uint64_t>(slot), a.arrival_time_s,
+                                         sent.commands[axis * sent.length + a.horizon_index]);
+      }
+    } else if (!predictors_.empty()) {
       predictors_[axis].command_applied(a.sequence, a.arrival_time_s);
+    }
+    if (!predictors_.empty()) {
       // A node's report is checked like any sample from the network: a travel that is no
       // delay (not finite, negative, beyond a minute) plans nothing.
       const double travel = a.network_arrival_s - a.send_time_s;
@@ -302,6 +384,7 @@ IterationRecord ContourServer::end_iteration(std::uint64_t lost_setpoints,
   summarize(tau_sc_, m.tau_sc_mean_s, m.tau_sc_p99_s, m.tau_sc_max_s);
   summarize(tau_cc_, m.tau_cc_mean_s, m.tau_cc_p99_s, m.tau_cc_max_s);
   summarize(tau_ca_, m.tau_ca_mean_s, m.tau_ca_p99_s, m.tau_ca_max_s);
+  if (horizon_ > 0) m.packets = true;
   if (!predictors_.empty()) {
     m.compensated = true;
     summarize(feedback_age_, m.feedback_age_mean_s, m.feedback_age_p99_s, m.feedback_age_max_s);

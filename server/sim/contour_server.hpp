@@ -27,6 +27,10 @@ struct CycleCommand {
   // With delay compensation, the instant the commands are meant to act (the axes hold an early
   // one until then); -inf: on arrival.
   double acts_at_s = -std::numeric_limits<double>::infinity();
+  // Packetized predictive control: per axis, horizon_length commands (axis-major), the first
+  // the command itself, each next one meant to act a period after the one before. 0: none.
+  std::size_t horizon_length = 0;
+  std::vector<double> horizon;
   bool diverged = false;        // the loop is unstable: stop the iteration
 };
 
@@ -49,6 +53,8 @@ class ContourServer {
   void correct_compute_delay(double measured_s);
   // Setpoints applied by `axis`, for the loop-delay statistics.
   void record_applied(std::size_t axis, const std::vector<AppliedSetpoint>& applied);
+  // Packetized predictive control: the axes' counters of the iteration (AxisEndpoint), summed.
+  void record_playout(std::uint64_t horizon_cycles, std::uint64_t held_cycles);
   // Closes the iteration; `lost` and `stale` are the axes' downlink counters.
   IterationRecord end_iteration(std::uint64_t lost_setpoints, std::uint64_t stale_setpoints);
 
@@ -81,6 +87,24 @@ class ContourServer {
   std::vector<double> downlink_delays_s_;   // a ring of the newest kDownlinkWindow
   std::size_t downlink_next_ = 0;
   DelayStatistics feedback_age_;
+  // Packetized predictive control: the commands of cycle k meant for the next instants, computed
+  // by a copy of the controller on the predicted positions. Every command acts at an instant of
+  // one grid, slot_origin_s_ + slot * h (slots increase), so the axis's playout and the
+  // predictor's slots agree.
+  void plan_horizon(std::uint64_t cycle, double acts_at, CycleCommand& out);
+  std::size_t horizon_ = 0;  // commands per setpoint; 0 without packets
+  double slot_origin_s_ = 0.0;
+  std::int64_t last_slot_ = -1;
+  std::vector<control::PredictedState> lookahead_states_;  // reused each cycle
+  control::AxisVector lookahead_predicted_;
+  control::GroupReference lookahead_reference_;
+  struct SentHorizon {
+    std::uint64_t cycle = 0;
+    std::size_t length = 0;
+    std::vector<double> commands;  // axis-major, as CycleCommand::horizon
+  };
+  static constexpr std::size_t kSentHorizons = 1024;  // reports of older setpoints find none
+  std::vector<SentHorizon> sent_horizons_;
 
   ContourJob job_;
   std::shared_ptr<const control::GroupContour> contour_;

@@ -50,6 +50,10 @@ struct IterationMetrics {
   // computed (compute time - sample time), over the cycles and axes.
   bool compensated = false;
   double feedback_age_mean_s = 0.0, feedback_age_p99_s = 0.0, feedback_age_max_s = 0.0;
+  // With packets only (packetized predictive control), summed over the axes: cycles played from
+  // an older setpoint's horizon, and cycles the last command was held (horizon exhausted).
+  bool packets = false;
+  std::uint64_t horizon_cycles = 0, held_cycles = 0;
   // The controller's internal estimates (adaptive parameters, observer states) and their values
   // after the iteration's last cycle; empty for a controller without any.
   std::vector<control::EstimateName> estimate_names;

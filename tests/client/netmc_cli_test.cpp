@@ -35,7 +35,7 @@ std::filesystem::path scratch(const std::string& name) {
 
 TEST(NetmcCli, BadInputFailsWithOneMessageNamingTheFieldAndWritesNothing) {
   const auto json = scratch("bad.json");
-  const std::array<std::pair<const char*, const char*>, 11> cases{{
+  const std::array<std::pair<const char*, const char*>, 14> cases{{
       {"--controller adrc+fuzzy", "controller: unknown name 'adrc+fuzzy'"},
       {"--trajectory circle:r=10,period", "--trajectory"},
       {"--sample-period 0", "--sample-period"},
@@ -45,7 +45,10 @@ TEST(NetmcCli, BadInputFailsWithOneMessageNamingTheFieldAndWritesNothing) {
       {"--delay uniform:min=2ms,max=1ms", "downlink.delay"},
       {"--plant steam", "plant"},
       {"--iterations 0", "--iterations"},
-      {"--compensate smith", "--compensate: expected none | predictor, got 'smith'"},
+      {"--compensate smith", "--compensate: expected none | predictor | packets[:horizon=N] | predictor+packets[:horizon=N], got 'smith'"},
+      {"--compensate packets:horizon=0", "--compensate: expected packets:horizon=N with N an integer of 2 to 64"},
+      {"--compensate predictor+packets:horizon=65", "--compensate: expected predictor+packets:horizon=N with N an integer of 2 to 64"},
+      {"--controller gtcf-adrc --compensate packets", "controller 'gtcf-adrc' cannot be copied"},
       {"--delay trace:ping.txt,rtt_share=2", "rtt_share: expected a number in (0, 1]"},
   }};
   for (const auto& [arguments, expected] : cases) {

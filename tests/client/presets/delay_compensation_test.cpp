@@ -1,6 +1,8 @@
 // Delay compensation on paper 001's study (in-process): the state predictor keeps every
 // controller stable beyond two sample periods of delay where none is without it, restores the
-// errors of the loop without delay, does no harm without delay, and reports the feedback's age.
+// errors of the loop without delay, does no harm without delay, and reports the feedback's age;
+// packets (packetized predictive control) cover bursts of lost setpoints the predictor alone
+// does not survive, and count the cycles they covered.
 // The no-delay values are the preset's own (paper 001's loop, U(0.3, 0.8) ms).
 #include <gtest/gtest.h>
 
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "client/presets.hpp"
+#include "client/spec_syntax.hpp"
 #include "client/study_runner.hpp"
 #include "server/job/delay_compensators.hpp"
 #include "server/job/job_builder.hpp"
@@ -112,10 +115,33 @@ TEST(DelayCompensation, BadCompensatorsAreRefusedNamingTheFieldOrTheLaw) {
     job::parse_compensation("smith", "--compensate");
     FAIL() << "an unknown compensator was taken";
   } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("--compensate: expected none | predictor, got 'smith'"), std::string::npos)
+    EXPECT_NE(std::string(error.what())
+                  .find("--compensate: expected none | predictor | packets[:horizon=N] | "
+                        "predictor+packets[:horizon=N], got 'smith'"),
+              std::string::npos)
         << error.what();
   }
   EXPECT_FALSE(job::parse_compensation("none", "--compensate").has_value());
+  // A horizon: 2 to 64 commands, for packets only.
+  EXPECT_EQ(job::parse_compensation("predictor+packets:horizon=8", "--compensate")->horizon(), 8u);
+  EXPECT_EQ(job::parse_compensation("packets", "--compensate")->horizon(), 0u);  // the default, 8
+  const std::vector<std::pair<std::string, std::string>> bad_flags = {
+      {"packets:horizon=0", "--compensate: expected packets:horizon=N with N an integer of 2 to 64, got 'packets:horizon=0'"},
+      {"packets:horizon=65", "--compensate: expected packets:horizon=N with N an integer of 2 to 64, got 'packets:horizon=65'"},
+      {"predictor+packets:horizon=1", "--compensate: expected predictor+packets:horizon=N with N an integer of 2 to 64, got 'predictor+packets:horizon=1'"},
+      {"packets:horizon=8x", "--compensate: expected packets:horizon=N with N an integer of 2 to 64, got 'packets:horizon=8x'"},
+      {"packets:depth=8", "--compensate: expected packets:horizon=N with N an integer of 2 to 64, got 'packets:depth=8'"},
+      {"predictor:horizon=8", "--compensate: predictor takes no options, got 'horizon=8'"},
+      {"none:horizon=8", "--compensate: none takes no options, got 'horizon=8'"},
+  };
+  for (const auto& [flag, message] : bad_flags) {
+    try {
+      job::parse_compensation(flag, "--compensate");
+      ADD_FAILURE() << flag << " was taken";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_EQ(std::string(error.what()), message);
+    }
+  }
 
   StudyPlan plan = make_preset("seed001");
   netmc::v1::JobSpec spec = plan.jobs.front();
@@ -144,6 +170,98 @@ TEST(DelayCompensation, BadCompensatorsAreRefusedNamingTheFieldOrTheLaw) {
   // The same law with ADRC's own model on that plant is taken.
   spec.mutable_controller()->set_name("adrc+pidccc");
   EXPECT_NO_THROW(job::build_contour_job(spec));
+  // A spec file's horizon is checked as the flag's is.
+  spec.mutable_compensation()->set_horizon(8);
+  try {
+    job::build_contour_job(spec);
+    FAIL() << "a horizon was taken for the predictor";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(), "compensation.horizon: predictor takes none (packets and predictor+packets do), got 8");
+  }
+  spec.mutable_compensation()->set_name("packets");
+  spec.mutable_compensation()->set_horizon(100);
+  try {
+    job::build_contour_job(spec);
+    FAIL() << "a horizon of 100 was taken";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(), "compensation.horizon: expected 2 to 64 commands, got 100");
+  }
+  // Packets run the law ahead on a copy: a law that cannot be copied is refused, named.
+  StudyPlan gtcf = make_preset("seed001");
+  netmc::v1::JobSpec task_space = gtcf.jobs.front();
+  task_space.mutable_controller()->set_name("gtcf-adrc");
+  task_space.mutable_controller()->clear_gains();
+  task_space.mutable_compensation()->set_name("packets");
+  try {
+    job::build_contour_job(task_space);
+    FAIL() << "packets were taken for a law that cannot be copied";
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    EXPECT_EQ(message.rfind("compensation: packets runs the law ahead on a copy of it, and controller 'gtcf-adrc' "
+                            "cannot be copied", 0),
+              0u)
+        << message;
+  }
+}
+
+// Paper 001's adrc+ilccc (the preset's third run), 10 iterations, U(10, 20) ms on the setpoint
+// link, with `loss` on it (none: nullptr) and the compensator named.
+RunOutcome run_adrc_ilccc(const netmc::v1::LossProfile* loss, const std::string& compensator, std::uint32_t horizon) {
+  StudyPlan plan = make_preset("seed001");
+  netmc::v1::JobSpec job = plan.jobs.at(2);
+  job.set_iterations(10);
+  *job.mutable_downlink()->mutable_delay() = uniform(0.010, 0.020);
+  if (loss) *job.mutable_downlink()->mutable_loss() = *loss;
+  job.mutable_compensation()->set_name(compensator);
+  if (horizon > 0) job.mutable_compensation()->set_horizon(horizon);
+  plan.jobs = {job};
+  return run_study_in_process(plan, false, 1).at(0);
+}
+
+TEST(DelayCompensation, PacketsCoverBurstsOfLostSetpointsAndCountWhatTheHorizonCovered) {
+  const netmc::v1::LossProfile gilbert = parse_loss("gilbert:p_gb=0.1,p_bg=0.25", "--loss");
+  const RunOutcome lossless = run_adrc_ilccc(nullptr, "predictor+packets", 8);
+  const RunOutcome lossy = run_adrc_ilccc(&gilbert, "predictor+packets", 8);
+  ASSERT_EQ(lossy.result.label(), "adrc+ilccc");
+  ASSERT_EQ(lossy.result.iterations_size(), 10);
+  EXPECT_EQ(lossy.result.compensation(), "predictor+packets:horizon=8");
+  EXPECT_FALSE(last(lossy).diverged());
+  EXPECT_LE(last(lossy).e_max_m(), 1.5 * last(lossless).e_max_m());
+  // The link lost setpoints (Gilbert: 2 in 7 on average, in bursts of 4); most of their cycles
+  // were played from a horizon, the rest held (bursts beyond 7).
+  const auto& m = last(lossy);
+  EXPECT_GT(m.lost_setpoints(), 500u);
+  ASSERT_TRUE(m.has_horizon_cycles());
+  EXPECT_GT(m.horizon_cycles(), m.held_cycles());
+  EXPECT_GT(m.held_cycles(), 0u);
+  EXPECT_LE(m.horizon_cycles() + m.held_cycles(), 2 * m.lost_setpoints());
+  // Without loss nothing is covered (the playout keeps the grid); without packets nothing counts.
+  EXPECT_EQ(last(lossless).held_cycles(), 0u);
+  const RunOutcome predictor_only = run_adrc_ilccc(&gilbert, "predictor", 0);
+  EXPECT_FALSE(last(predictor_only).has_horizon_cycles());
+  // The predictor alone does not survive those bursts: what the horizon adds.
+  EXPECT_TRUE(last(predictor_only).diverged());
+}
+
+TEST(DelayCompensation, PacketsKeepEveryRunStableBeyondTwoPeriodsAndDoNoHarmWithoutDelay) {
+  const auto reference = run_seed001(nullptr, nullptr, "");
+  const netmc::v1::DelayProfile none;
+  const auto plain_none = run_seed001(&none, nullptr, "");
+  const auto packets_none = run_seed001(&none, nullptr, "predictor+packets");
+  for (std::size_t row = 0; row < plain_none.size(); ++row) {
+    const double before = last(plain_none[row]).e_max_m(), after = last(packets_none[row]).e_max_m();
+    EXPECT_LT(std::abs(after - before), 0.01 * before) << plain_none[row].result.label();
+  }
+  for (const auto& delay : {constant(0.020), uniform(0.010, 0.030)}) {
+    const auto compensated = run_seed001(&delay, nullptr, "predictor+packets");
+    for (std::size_t row = 0; row < compensated.size(); ++row) {
+      const auto& run = compensated[row];
+      SCOPED_TRACE(run.result.label());
+      EXPECT_EQ(run.result.compensation(), "predictor+packets");
+      EXPECT_FALSE(last(run).diverged());
+      EXPECT_LE(last(run).e_max_m(), 2.0 * last(reference[row]).e_max_m());
+    }
+  }
 }
 
 // docs/user-guide/delay-compensation.md carries the table netmc sim --list-compensators prints.
