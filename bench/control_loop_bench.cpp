@@ -152,6 +152,17 @@ void BM_SimulatedIteration_Seed001_AdrcIlccc_Predictor20ms(benchmark::State& sta
   simulated_iterations(state, spec);
 }
 
+// The same with predictor+packets:horizon=8: a copy of the controller each cycle (with ILC's
+// memory) run 7 periods ahead on the model, and the axes' playout of the horizons.
+void BM_SimulatedIteration_Seed001_AdrcIlccc_PredictorPackets20ms(benchmark::State& state) {
+  auto spec = seed001_q_filtered_ilc();
+  spec.mutable_downlink()->mutable_delay()->mutable_uniform()->set_min_s(0.020);
+  spec.mutable_downlink()->mutable_delay()->mutable_uniform()->set_max_s(0.020);
+  spec.mutable_compensation()->set_name("predictor+packets");
+  spec.mutable_compensation()->set_horizon(8);
+  simulated_iterations(state, spec);
+}
+
 // The whole default study: 4 runs (adrc, adrc+pidccc, adrc+ilccc, adrc+ilccc+q20hz) x 20
 // iterations, in process, on `threads` worker threads. The all-cores variant reports wall-clock
 // time (UseRealTime): the CPU time of the calling thread alone would understate the work.
@@ -294,6 +305,7 @@ BENCHMARK(BM_NumericalTaskFrame_Spline);
 BENCHMARK(BM_NumericalTaskFrame_Lissajous);
 BENCHMARK(BM_SimulatedIteration_Seed001_AdrcIlccc)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SimulatedIteration_Seed001_AdrcIlccc_Predictor20ms)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SimulatedIteration_Seed001_AdrcIlccc_PredictorPackets20ms)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Seed001Study_20Iterations)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Seed001Study_20Iterations_AllCores)->Unit(benchmark::kMillisecond)->UseRealTime();
 

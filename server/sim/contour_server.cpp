@@ -47,6 +47,7 @@ control::AxisVector ContourServer::begin_iteration(std::size_t iteration) {
   predicted_ = start;
   feedback_age_.clear();
   last_slot_ = -1;
+  last_acts_at_s_ = std::numeric_limits<double>::infinity();
   for (auto& sent : sent_horizons_) sent.length = 0;
 
   record_ = IterationRecord{};
@@ -159,6 +160,7 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
       acts_at = slot_origin_s_ + static_cast<double>(slot) * h;
     }
     out.acts_at_s = acts_at;
+    catch_up(cycle, acts_at);
     for (std::size_t axis = 0; axis < predictors_.size(); ++axis) {
       const auto i = static_cast<Eigen::Index>(axis);
       const auto& predictor = predictors_[axis];
@@ -245,6 +247,23 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
     listener_->on_cycle(live);
   }
   return out;
+}
+
+void ContourServer::catch_up(std::uint64_t cycle, double acts_at) {
+  const double h = job_.sample_period_s;
+  const double last = last_acts_at_s_;
+  last_acts_at_s_ = acts_at;
+  if (!(acts_at - last > 1.5 * h)) return;
+  std::size_t steps = 0;
+  for (double at = last + h; at < acts_at - 0.5 * h && steps < kMaxCatchUpSteps; at += h, ++steps) {
+    for (std::size_t axis = 0; axis < predictors_.size(); ++axis) {
+      const auto i = static_cast<Eigen::Index>(axis);
+      const auto& predictor = predictors_[axis];
+      predicted_[i] = predictor.has_measurement() ? predictor.predict_position(at) : server_measurement_[i];
+    }
+    contour_->sample(at, predicted_reference_);
+    controller_->step(cycle, predicted_reference_, predicted_);
+  }
 }
 
 void ContourServer::plan_horizon(std::uint64_t cycle, double acts_at, CycleCommand& out) {
