@@ -115,10 +115,9 @@ void AxisEndpoint::play_packets(std::vector<Delivery>& deliveries, double until_
   const double same_instant = h / 4.0;
   constexpr double kNever = std::numeric_limits<double>::infinity();
   while (true) {
-    // Not fresher than the one playing, or arrived after its horizon's end: never plays.
+    // Not fresher than the one playing: never plays.
     std::erase_if(packets_waiting_, [&](const Packet& p) {
-      const bool stale = (playing_ && p.sequence <= playing_->sequence) ||
-                         first_instant(p).second >= static_cast<double>(p.commands.size());
+      const bool stale = playing_ && p.sequence <= playing_->sequence;
       if (stale) ++stale_packets_;
       return stale;
     });
@@ -127,6 +126,7 @@ void AxisEndpoint::play_packets(std::vector<Delivery>& deliveries, double until_
     const double next = playing_ ? playing_->acts_at_s + static_cast<double>(next_index_) * h : kNever;
     const double at = std::min(start, next);
     if (!(at <= until_s)) break;
+    bool beyond_horizon = false;
     // The freshest setpoint that begins at this instant takes over.
     auto fresh = packets_waiting_.end();
     for (auto it = packets_waiting_.begin(); it != packets_waiting_.end(); ++it) {
@@ -141,9 +141,17 @@ void AxisEndpoint::play_packets(std::vector<Delivery>& deliveries, double until_
         if (last_instant_ == Instant::horizon) --horizon_cycles_;
         if (last_instant_ == Instant::held) --held_cycles_;
       }
-      next_index_ = static_cast<std::size_t>(first_instant(*fresh).second);
+      const double index = first_instant(*fresh).second;
       playing_ = std::move(*fresh);
       packets_waiting_.erase(fresh);
+      // One that came after its horizon's end still is the freshest the axis has: its last command
+      // acts at once and holds, as a late setpoint without packets acts on arrival. (Dropped, it
+      // would never be reported, and a server that plans by the reported delays would never
+      // learn one longer than its horizon.)
+      beyond_horizon = index >= static_cast<double>(playing_->commands.size());
+      next_index_ = beyond_horizon ? playing_->commands.size() - 1 : static_cast<std::size_t>(index);
+      // Its instants go on from this one: the last command sits at this instant of its grid.
+      if (beyond_horizon) playing_->acts_at_s += (index - static_cast<double>(next_index_)) * h;
     } else if (next_index_ >= playing_->commands.size()) {
       // Nothing left to play: the last command holds, at every instant until a fresh one begins.
       const double last = std::min(until_s, start - same_instant);
@@ -160,8 +168,13 @@ void AxisEndpoint::play_packets(std::vector<Delivery>& deliveries, double until_
     network_arrivals_.push_back(playing_->network_arrival_s);
     horizon_indices_.push_back(static_cast<std::uint32_t>(next_index_));
     packet_sequences_.push_back(playing_->sequence);
-    if (next_index_ > 0) ++horizon_cycles_;
-    last_instant_ = next_index_ > 0 ? Instant::horizon : Instant::own;
+    if (beyond_horizon) {
+      ++held_cycles_;
+      last_instant_ = Instant::held;
+    } else {
+      if (next_index_ > 0) ++horizon_cycles_;
+      last_instant_ = next_index_ > 0 ? Instant::horizon : Instant::own;
+    }
     last_instant_s_ = at;
     ++next_index_;
   }

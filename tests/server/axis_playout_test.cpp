@@ -101,7 +101,7 @@ TEST(AxisPlayout, PacketsCoverALostSetpointFromTheHorizonThenHoldTheLastCommand)
   EXPECT_EQ(axis.stale_setpoints(), 0u);
 }
 
-TEST(AxisPlayout, ALatePacketStartsAtItsNextInstantAndAnOlderOneNeverPlays) {
+TEST(AxisPlayout, ALatePacketStartsAtItsNextInstantAnOlderOneNeverPlaysOneBeyondItsHorizonHolds) {
   const ContourJob job = delayed_job();
   AxisEndpoint axis(AxisEndpoint::simulated_drive(job, 0), job, 0);
   axis.begin_iteration(1, 0.06);
@@ -117,9 +117,21 @@ TEST(AxisPlayout, ALatePacketStartsAtItsNextInstantAndAnOlderOneNeverPlays) {
   EXPECT_EQ(second[0].sequence, 0u);
   EXPECT_EQ(second[1].sequence, 2u);
   EXPECT_EQ(axis.stale_setpoints(), 1u);  // 1: its one command's period was over when it came
-  ASSERT_TRUE(axis.submit_packet(0.020, 5, 0.0, {0.50, 0.51}));  // at 24 ms; its horizon ended at 10 ms
-  axis.advance_to(0.030);
-  EXPECT_EQ(axis.stale_setpoints(), 2u);
+  // At 24 ms, its horizon over at 10 ms: the freshest all the same, its last command acts at its
+  // next instant, 25 ms, and holds (counted held, and reported: the server learns its delay).
+  ASSERT_TRUE(axis.submit_packet(0.020, 5, 0.0, {0.50, 0.51}));
+  const std::uint64_t held_before = axis.held_cycles();
+  const auto& third = axis.advance_to(0.0251);
+  ASSERT_FALSE(third.empty());
+  EXPECT_EQ(third.back().sequence, 5u);
+  EXPECT_EQ(third.back().horizon_index, 1u);
+  EXPECT_NEAR(third.back().arrival_time_s, 0.025, 1e-15);
+  EXPECT_DOUBLE_EQ(third.back().network_arrival_s, 0.024);
+  EXPECT_DOUBLE_EQ(axis.supervised().input(), 0.51);
+  EXPECT_EQ(axis.held_cycles(), held_before + 2);  // 22 ms (2's one command held) and 25 ms
+  EXPECT_EQ(axis.stale_setpoints(), 1u);
+  axis.advance_to(0.0351);  // 30 and 35 ms: 0.51 held
+  EXPECT_EQ(axis.held_cycles(), held_before + 4);
 }
 
 TEST(AxisPlayout, AHorizonTripsTheAxisOnArrivalIfNotFiniteAndBeyondTheLimitWhenItWouldAct) {
