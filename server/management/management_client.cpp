@@ -83,6 +83,11 @@ ManagementClient::ManagementClient(const std::string& host_port,
     throw std::runtime_error("server " + name_ + ": no connection within " +
                              std::to_string(connect_timeout.count()) + " ms");
   }
+  if (error == asio::error::connection_refused) {
+    // The usual cause is no server at all: say so, and how to start one there.
+    throw std::runtime_error("server " + name_ + ": connection refused: no netmc-server listens there (start one with "
+                             "`netmc-server --listen " + name_ + "`, or name another with --server or NETMC_SERVER)");
+  }
   if (error) throw std::runtime_error("server " + name_ + ": " + describe(error));
   socket().set_option(tcp::no_delay(true), error);  // small frames: do not wait for Nagle
   if (!tls_) return;

@@ -628,7 +628,9 @@ TEST(ManagementClient, ConnectionRefusedNamesTheServer) {
     ManagementClient client(where, 1s);
     FAIL() << "connected to a closed port";
   } catch (const std::runtime_error& error) {
-    EXPECT_EQ(std::string(error.what()), "server " + where + ": connection refused");
+    EXPECT_EQ(std::string(error.what()), "server " + where + ": connection refused: no netmc-server listens there (start "
+                                         "one with `netmc-server --listen " + where +
+                                         "`, or name another with --server or NETMC_SERVER)");
   }
 }
 
