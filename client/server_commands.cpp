@@ -144,12 +144,14 @@ std::function<int()> add_run_command(CLI::App& app) {
   struct Flags {
     StudyFlags study;
     std::string server = "127.0.0.1:7300";
+    FailOnUnstable fail_on_unstable;
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* run = app.add_subcommand(
       "run", "Run a study on a netmc-server and its axis nodes (same flags and presets as sim)");
   add_server_option(run, flags->server);
   add_study_flags(run, flags->study);
+  flags->fail_on_unstable.add_flag(run);
   return [flags]() -> int {
     const StudyPlan plan = plan_from_flags(flags->study);
     if (!flags->study.json_path.empty()) check_output_path(flags->study.json_path, "--json");
@@ -167,7 +169,7 @@ std::function<int()> add_run_command(CLI::App& app) {
     if (!flags->study.json_path.empty()) write_output(flags->study.json_path, study_json(outcomes));
     print_study_table(report, plan, outcomes);
     if (flags->study.curve) print_learning_curve(report, outcomes);
-    return 0;
+    return flags->fail_on_unstable.exit_code(outcomes);
   };
 }
 

@@ -33,6 +33,7 @@ std::function<int()> add_sim_command(CLI::App& app) {
     bool list_controllers = false;
     bool list_compensators = false;
     std::string plant_parameters;
+    FailOnUnstable fail_on_unstable;
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* sim = app.add_subcommand("sim", "Run a study in-process, in virtual time (default: --preset seed001)");
@@ -54,6 +55,7 @@ std::function<int()> add_sim_command(CLI::App& app) {
   sim->add_flag("--list-compensators", flags->list_compensators,
                 "Print every delay compensator --compensate takes (a Markdown table: name, what it does, what it "
                 "predicts with, source) and run nothing");
+  flags->fail_on_unstable.add_flag(sim);
   sim->add_option("--plant-parameters", flags->plant_parameters,
                   "Print the parameters --plant NAME:KEY=VALUE (and a spec's plant_axes) can change, and run nothing")
       ->type_name("NAME");
@@ -137,7 +139,7 @@ every run. Output files are written whole, after every run has finished.)");
       const auto written = plot_sim_outputs(flags->plot_dir, flags->plot_dir, formats);
       fmt::print("\nfigures: {}\n", fmt::join(written, " "));
     }
-    return 0;
+    return flags->fail_on_unstable.exit_code(outcomes);
   };
 }
 

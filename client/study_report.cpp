@@ -343,4 +343,32 @@ void write_trace_directory(const std::string& directory, const std::vector<RunOu
   }
 }
 
+std::vector<std::string> unstable_runs(const std::vector<RunOutcome>& outcomes) {
+  std::vector<std::string> labels;
+  for (const auto& outcome : outcomes) {
+    const auto& iterations = outcome.result.iterations();
+    if (iterations.empty()) continue;
+    const auto& last = iterations[iterations.size() - 1];
+    if (last.diverged() || last.did_not_follow()) labels.push_back(outcome.result.label());
+  }
+  return labels;
+}
+
+void FailOnUnstable::add_flag(CLI::App* command) {
+  command->add_flag("--fail-on-unstable", enabled,
+                    "Exit with code 3 when a run's last iteration diverged or did not follow the reference (the "
+                    "table and files are written all the same)");
+}
+
+int FailOnUnstable::exit_code(const std::vector<RunOutcome>& outcomes) const {
+  if (!enabled) return 0;
+  const auto labels = unstable_runs(outcomes);
+  if (labels.empty()) return 0;
+  std::string names;
+  for (const auto& label : labels) names += (names.empty() ? "" : ", ") + label;
+  fmt::print(stderr, "netmc: {} of {} runs gave no result (unstable or did not follow): {}\n", labels.size(),
+             outcomes.size(), names);
+  return kUnstableExitCode;
+}
+
 }  // namespace netmc::cli

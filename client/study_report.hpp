@@ -2,6 +2,8 @@
 // Human and machine outputs of a study: the comparison table, the JSON results and the
 // per-cycle CSV traces. Files are written whole or not at all (temporary file, then rename).
 
+#include <CLI/CLI.hpp>
+
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -15,6 +17,19 @@ namespace netmc::cli {
 void print_study_table(std::ostream& out, const StudyPlan& plan,
                        const std::vector<RunOutcome>& outcomes);
 void print_learning_curve(std::ostream& out, const std::vector<RunOutcome>& outcomes);
+
+// --fail-on-unstable's exit code: a run whose last iteration diverged or did not follow the
+// reference (no result), for scripts that must not take a table of failures for success.
+inline constexpr int kUnstableExitCode = 3;
+// The labels of those runs, in order; empty when every run gave a result.
+std::vector<std::string> unstable_runs(const std::vector<RunOutcome>& outcomes);
+// Adds --fail-on-unstable to `command`; `exit_code` then maps a study's outcomes to its exit code
+// (kUnstableExitCode naming the runs on stderr, else 0).
+struct FailOnUnstable {
+  bool enabled = false;
+  void add_flag(CLI::App* command);
+  int exit_code(const std::vector<RunOutcome>& outcomes) const;
+};
 
 std::string study_json(const std::vector<RunOutcome>& outcomes);
 // Columns: time, per-axis reference/position/measurement, contour errors, commands, loop delay,

@@ -173,6 +173,21 @@ TEST(NetmcCli, JsonHoldsEveryIterationOfEveryRun) {
   std::filesystem::remove_all(csv);
 }
 
+TEST(NetmcCli, FailOnUnstableExitsWith3NamingTheRunsAndStillWritesTheResults) {
+  const auto json = scratch("unstable.json");
+  // Constant 20 ms: both runs diverge in iteration 1 (docs/user-guide/delay-compensation.md).
+  const std::string unstable = "sim --controller adrc,adrc+pidccc --iterations 1 --delay constant:20ms";
+  const Result failing = run(unstable + " --fail-on-unstable --json " + json.string());
+  EXPECT_EQ(failing.exit_code, 3) << failing.output;
+  EXPECT_NE(failing.output.find("netmc: 2 of 2 runs gave no result (unstable or did not follow): adrc, adrc+pidccc"),
+            std::string::npos)
+      << failing.output;
+  EXPECT_TRUE(std::filesystem::exists(json));
+  EXPECT_EQ(run(unstable).exit_code, 0);  // without the flag: the table says it, the exit code not
+  EXPECT_EQ(run("sim --controller adrc --iterations 1 --fail-on-unstable").exit_code, 0);
+  std::filesystem::remove_all(json);
+}
+
 TEST(NetmcCli, JsonSpecFileRunsAndBadSpecNamesTheFile) {
   const auto spec = scratch("spec.json");
   {
