@@ -476,16 +476,20 @@ void submit_to(sim::AxisEndpoint& endpoint, double send_time_s, const netmc::dds
                          std::vector<double>(setpoint.horizon().begin(), setpoint.horizon().end()));
 }
 
+netmc::dds::AppliedSetpoint applied_entry(const sim::AppliedSetpoint& applied) {
+  netmc::dds::AppliedSetpoint entry;
+  entry.cycle(applied.sequence);
+  entry.send_time_s(applied.send_time_s);
+  entry.arrival_time_s(applied.arrival_time_s);
+  entry.network_arrival_s(applied.network_arrival_s);
+  entry.horizon_index(applied.horizon_index);
+  return entry;
+}
+
 void append_applied(netmc::dds::Feedback& feedback, const std::vector<sim::AppliedSetpoint>& applied) {
   for (const auto& a : applied) {
     if (feedback.applied().size() >= netmc::dds::kMaxApplied) break;
-    netmc::dds::AppliedSetpoint entry;
-    entry.cycle(a.sequence);
-    entry.send_time_s(a.send_time_s);
-    entry.arrival_time_s(a.arrival_time_s);
-    entry.network_arrival_s(a.network_arrival_s);
-    entry.horizon_index(a.horizon_index);
-    feedback.applied().push_back(entry);
+    feedback.applied().push_back(applied_entry(a));
   }
 }
 

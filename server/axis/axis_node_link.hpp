@@ -213,6 +213,8 @@ std::atomic<bool>& fault_reset_requested();
 
 // Copies setpoints applied by the actuator into a feedback sample.
 void append_applied(netmc::dds::Feedback& feedback, const std::vector<sim::AppliedSetpoint>& applied);
+// One applied setpoint as the data plane carries it.
+netmc::dds::AppliedSetpoint applied_entry(const sim::AppliedSetpoint& applied);
 // The instant a setpoint is meant to act (Setpoint.acts_at_s, delay compensation), for
 // AxisEndpoint::submit_setpoint; -inf (on arrival) for 0 or a value that is not finite.
 double planned_instant(const netmc::dds::Setpoint& setpoint);

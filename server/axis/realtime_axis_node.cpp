@@ -584,13 +584,9 @@ void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clo
   feedback.iteration(axis.iteration);
   const auto add_applied = [&](const sim::AppliedSetpoint& a) {
     if (feedback.applied().size() >= netmc::dds::kMaxApplied) return;
-    netmc::dds::AppliedSetpoint applied;
-    applied.cycle(a.sequence);
+    netmc::dds::AppliedSetpoint applied = applied_entry(a);
     const auto sent = axis.server_send_times.find(a.sequence);  // see server_send_times
-    applied.send_time_s(sent != axis.server_send_times.end() ? sent->second : a.send_time_s);
-    applied.arrival_time_s(a.arrival_time_s);
-    applied.network_arrival_s(a.network_arrival_s);
-    applied.horizon_index(a.horizon_index);
+    if (sent != axis.server_send_times.end()) applied.send_time_s(sent->second);
     feedback.applied().push_back(applied);
   };
   for (const auto& a : axis.applied_since_sample) add_applied(a);

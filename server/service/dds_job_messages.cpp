@@ -49,28 +49,22 @@ void JobPublisher::end_iteration(std::size_t axis, std::uint32_t iteration, std:
   dds::write_checked(channels_.control, &c);
 }
 
-void JobPublisher::command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle, double command,
-                           double send_time_s, double acts_at_s, std::span<const double> horizon) {
+void JobPublisher::command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle,
+                           const sim::CycleCommand& command, double send_time_s, double acts_at_s) {
   netmc::dds::Setpoint setpoint;
   setpoint.axis(channels_.axes.at(axis));
   setpoint.server(channels_.server);
   setpoint.job_id(job_id_);
   setpoint.iteration(iteration);
   setpoint.cycle(cycle);
-  setpoint.command(command);
+  setpoint.command(command.command[static_cast<Eigen::Index>(axis)]);
   setpoint.send_time_s(send_time_s);
   setpoint.acts_at_s(std::isfinite(acts_at_s) ? acts_at_s : 0.0);
-  setpoint.horizon().assign(horizon.begin(), horizon.end());
-  dds::write_checked(channels_.setpoints.at(axis), &setpoint);
-}
-
-void JobPublisher::command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle,
-                           const sim::CycleCommand& command, double send_time_s, double acts_at_s) {
-  std::span<const double> horizon;
-  if (command.horizon_length > 0) {
-    horizon = std::span<const double>(command.horizon).subspan(axis * command.horizon_length, command.horizon_length);
+  if (command.horizon_length > 0) {  // packets: this axis's row of the horizon
+    const auto first = command.horizon.begin() + static_cast<std::ptrdiff_t>(axis * command.horizon_length);
+    setpoint.horizon().assign(first, first + static_cast<std::ptrdiff_t>(command.horizon_length));
   }
-  this->command(axis, iteration, cycle, command.command[static_cast<Eigen::Index>(axis)], send_time_s, acts_at_s, horizon);
+  dds::write_checked(channels_.setpoints.at(axis), &setpoint);
 }
 
 void JobPublisher::end_job() noexcept {

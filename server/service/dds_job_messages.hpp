@@ -4,7 +4,6 @@
 
 #include <cstdint>
 #include <functional>
-#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -54,11 +53,8 @@ class JobPublisher {
   void begin_iteration(std::size_t axis, std::uint32_t iteration, double start_position_m,
                        double start_time_s, bool with_spec);
   void end_iteration(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle);
-  // `acts_at_s`: when the command is meant to act (delay compensation); not finite: on arrival.
-  // `horizon`: with packets, the commands from this cycle's on (at most 64); empty without.
-  void command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle, double command,
-               double send_time_s, double acts_at_s, std::span<const double> horizon = {});
-  // The axis's part of a cycle's command: with packets, its horizon.
+  // The axis's part of a cycle's command, and with packets its horizon. `acts_at_s`: when the
+  // command is meant to act (delay compensation); not finite: on arrival.
   void command(std::size_t axis, std::uint32_t iteration, std::uint64_t cycle, const sim::CycleCommand& command,
                double send_time_s, double acts_at_s);
   // Releases every axis (never throws: it runs on the way out of failed jobs too).

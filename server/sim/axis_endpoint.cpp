@@ -93,9 +93,7 @@ std::optional<double> AxisEndpoint::next_arrival_s() const {
 }
 
 void AxisEndpoint::play_packets(std::vector<Delivery>& deliveries, double until_s) {
-  network_arrivals_.clear();
-  horizon_indices_.clear();
-  packet_sequences_.clear();
+  origins_.clear();
   for (const auto& delivery : deliveries) {
     const auto it = std::find_if(packets_in_flight_.begin(), packets_in_flight_.end(),
                                  [&](const Packet& p) { return p.sequence == delivery.sequence; });
@@ -165,9 +163,7 @@ void AxisEndpoint::play_packets(std::vector<Delivery>& deliveries, double until_
     const double command = playing_->commands[next_index_];
     if (!axis_.accept_horizon_entry(playing_->sequence, next_index_, playing_->commands.size(), command)) break;
     deliveries.push_back({playing_->send_time_s, at, ++plays_, command});
-    network_arrivals_.push_back(playing_->network_arrival_s);
-    horizon_indices_.push_back(static_cast<std::uint32_t>(next_index_));
-    packet_sequences_.push_back(playing_->sequence);
+    origins_.push_back({playing_->sequence, playing_->network_arrival_s, static_cast<std::uint32_t>(next_index_)});
     if (beyond_horizon) {
       ++held_cycles_;
       last_instant_ = Instant::held;
@@ -181,9 +177,9 @@ void AxisEndpoint::play_packets(std::vector<Delivery>& deliveries, double until_
 }
 
 void AxisEndpoint::play_out(std::vector<Delivery>& deliveries, double until_s) {
-  network_arrivals_.clear();
+  origins_.clear();
   if (planned_.empty() && held_.empty()) {
-    for (const auto& d : deliveries) network_arrivals_.push_back(d.arrival_time_s);
+    for (const auto& d : deliveries) origins_.push_back({d.sequence, d.arrival_time_s, 0});
     return;
   }
   for (auto& delivery : deliveries) {
@@ -208,7 +204,7 @@ void AxisEndpoint::play_out(std::vector<Delivery>& deliveries, double until_s) {
   std::size_t due = 0;
   while (due < held_.size() && held_[due].delivery.arrival_time_s <= until_s) {
     deliveries.push_back(held_[due].delivery);
-    network_arrivals_.push_back(held_[due].network_arrival_s);
+    origins_.push_back({held_[due].delivery.sequence, held_[due].network_arrival_s, 0});
     ++due;
   }
   held_.erase(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(due));
@@ -216,14 +212,10 @@ void AxisEndpoint::play_out(std::vector<Delivery>& deliveries, double until_s) {
 
 const std::vector<AppliedSetpoint>& AxisEndpoint::record(const std::vector<Delivery>& deliveries) {
   applied_.clear();
-  const bool packets = !horizon_indices_.empty();
   for (std::size_t i = 0; i < deliveries.size(); ++i) {
     const auto& d = deliveries[i];
-    if (packets) {
-      applied_.push_back({packet_sequences_[i], d.send_time_s, d.arrival_time_s, network_arrivals_[i], horizon_indices_[i]});
-    } else {
-      applied_.push_back({d.sequence, d.send_time_s, d.arrival_time_s, network_arrivals_[i], 0});
-    }
+    const Origin& o = origins_[i];
+    applied_.push_back({o.sequence, d.send_time_s, d.arrival_time_s, o.network_arrival_s, o.horizon_index});
   }
   return applied_;
 }
@@ -233,7 +225,6 @@ void AxisEndpoint::receive(double until_s) {
   if (!packets_in_flight_.empty() || !packets_waiting_.empty() || playing_) {
     play_packets(deliveries_, until_s);
   } else {
-    horizon_indices_.clear();
     play_out(deliveries_, until_s);
   }
 }

@@ -109,7 +109,14 @@ class AxisEndpoint {
   };
   std::vector<Planned> planned_;  // setpoints in flight with a plan, in sequence order
   std::vector<Held> held_;        // arrived, waiting for their instant
-  std::vector<double> network_arrivals_;  // of deliveries_, for record()
+  // Of each of deliveries_, for record(): the setpoint it came in (a packet's sequence, not the
+  // drive's), when that reached the axis, and which of its commands it is.
+  struct Origin {
+    std::uint64_t sequence;
+    double network_arrival_s;
+    std::uint32_t horizon_index;
+  };
+  std::vector<Origin> origins_;
 
   // Packetized predictive control (submit_packet).
   struct Packet {
@@ -128,8 +135,6 @@ class AxisEndpoint {
   std::optional<Packet> playing_;          // the freshest that has begun to play
   std::size_t next_index_ = 0;             // of playing_'s commands, at its next instant
   std::uint64_t plays_ = 0;                // the drive's sequence: one per command played
-  std::vector<std::uint32_t> horizon_indices_;  // of deliveries_, for record()
-  std::vector<std::uint64_t> packet_sequences_;  // of deliveries_, for record()
   std::uint64_t stale_packets_ = 0, horizon_cycles_ = 0, held_cycles_ = 0;
   enum class Instant { own, horizon, held };  // what the last instant played
   Instant last_instant_ = Instant::own;
