@@ -20,6 +20,7 @@
 #include "server/job/job_builder.hpp"
 #include "server/management/access_token.hpp"
 #include "server/management/management_client.hpp"
+#include "server/store/job_list.hpp"
 
 namespace netmc::cli {
 namespace {
@@ -482,6 +483,7 @@ std::string format_unix_time(double unix_s) {
 std::function<int()> add_jobs_command(CLI::App& app) {
   struct Flags {
     std::string server = "127.0.0.1:7300";
+    std::string state_dir;
     std::string state;
     std::string label;
     std::string since;
@@ -493,6 +495,9 @@ std::function<int()> add_jobs_command(CLI::App& app) {
       "jobs", "The server's job history, newest first: every job its job store keeps (netmc-server --state-dir; "
               "without one, the jobs in its memory), with who submitted it, when, and how it ended");
   add_server_option(jobs, flags->server);
+  jobs->add_option("--state-dir", flags->state_dir,
+                   "Read the job store in this directory (netmc-server's --state-dir) instead of asking a server "
+                   "(--server is then not used): works with the server down; read-only, beside a running server too");
   jobs->add_option("--state", flags->state, "Only jobs in this state")
       ->check(CLI::IsMember({"queued", "running", "done", "failed", "cancelled"}));
   jobs->add_option("--label", flags->label, "Only jobs whose label contains this text");
@@ -505,13 +510,17 @@ std::function<int()> add_jobs_command(CLI::App& app) {
             ? 0.0
             : std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count() -
                   parse_age_s(flags->since);
-    const auto response = ask_server(flags->server, [&](netmc::v1::Request& request) {
-      auto& asked = *request.mutable_jobs();
-      asked.set_state(flags->state);
-      asked.set_label_contains(flags->label);
-      asked.set_since_unix_s(since_unix_s);
-      asked.set_limit(flags->limit);
-    });
+    netmc::v1::ListJobs asked;
+    asked.set_state(flags->state);
+    asked.set_label_contains(flags->label);
+    asked.set_since_unix_s(since_unix_s);
+    asked.set_limit(flags->limit);
+    netmc::v1::Response response;
+    if (flags->state_dir.empty()) {
+      response = ask_server(flags->server, [&](netmc::v1::Request& request) { *request.mutable_jobs() = asked; });
+    } else {
+      *response.mutable_jobs() = store::job_list(store::JobStore::read(flags->state_dir, store::job_filter(asked)), true);
+    }
     const auto& list = response.jobs();
     if (flags->json) {
       fmt::print("{}\n", job::to_json(list));
@@ -527,6 +536,7 @@ std::function<int()> add_jobs_command(CLI::App& app) {
     }
     if (list.jobs_size() == 0) fmt::print("(no job)\n");
     if (!list.persistent()) fmt::print("(from the server's memory: it was started without --state-dir)\n");
+    if (!flags->state_dir.empty()) fmt::print("(read from {} without a server)\n", flags->state_dir);
     return 0;
   };
 }

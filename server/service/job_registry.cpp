@@ -10,6 +10,7 @@
 
 #include "server/job/job_builder.hpp"
 #include "server/service/error_response.hpp"
+#include "server/store/job_list.hpp"
 
 namespace netmc::service {
 
@@ -259,54 +260,31 @@ std::vector<std::shared_ptr<Job>> JobRegistry::restore_from_store() {
 }
 
 netmc::v1::JobList JobRegistry::list_jobs(const netmc::v1::ListJobs& request) const {
-  store::JobFilter filter;
-  filter.state = request.state();
-  filter.label_contains = request.label_contains();
-  filter.since_unix_s = request.since_unix_s();
-  filter.limit = request.limit() == 0 ? 50 : std::min<std::uint32_t>(request.limit(), 10000);
-  static const std::set<std::string> states{"", "queued", "running", "done", "failed", "cancelled"};
-  if (!states.contains(filter.state)) {
-    throw std::invalid_argument("state: '" + filter.state.substr(0, 32) +
-                                "' is none of queued, running, done, failed, cancelled");
-  }
-  if (!std::isfinite(filter.since_unix_s)) throw std::invalid_argument("since: not a finite time");
-  if (filter.label_contains.size() > 256) throw std::invalid_argument("label: longer than 256 characters");
-  netmc::v1::JobList list;
-  const auto add = [&list](std::uint64_t id, const std::string& label, const std::string& state,
-                           const std::string& error, const std::string& owner, double accepted, double ended,
-                           std::uint32_t done, std::uint32_t total) {
-    auto& record = *list.add_jobs();
-    record.set_job_id(id);
-    record.set_label(label);
-    record.set_state(state);
-    record.set_error(error);
-    record.set_owner(owner);
-    record.set_accepted_unix_s(accepted);
-    record.set_ended_unix_s(ended);
-    record.set_iterations_done(done);
-    record.set_iterations_total(total);
-  };
-  if (options_.store) {
-    // The store's state lags the memory's by the writes queued: a running job is "running" in
-    // both; its end shows once written.
-    list.set_persistent(true);
-    for (const auto& job : options_.store->list(filter)) {
-      add(job.id, job.label, job.state, job.error, job.owner, job.accepted_unix_s, job.ended_unix_s,
-          job.iterations_done, job.iterations_total);
-    }
-    return list;
-  }
+  const auto filter = store::job_filter(request);
+  // The store's state lags the memory's by the writes queued: a running job is "running" in both;
+  // its end shows once written.
+  if (options_.store) return store::job_list(options_.store->list(filter), true);
+  std::vector<store::StoredJob> listed;
   std::lock_guard lock(mutex_);
-  for (auto it = jobs_.rbegin(); it != jobs_.rend() && list.jobs_size() < static_cast<int>(filter.limit); ++it) {
+  for (auto it = jobs_.rbegin(); it != jobs_.rend() && listed.size() < filter.limit; ++it) {
     const Job& job = *it->second;
     const auto& status = job.status;
     if (!filter.state.empty() && status.state() != filter.state) continue;
     if (!filter.label_contains.empty() && status.label().find(filter.label_contains) == std::string::npos) continue;
     if (job.accepted_unix_s < filter.since_unix_s) continue;
-    add(job.id, status.label(), status.state(), status.error(), job.owner, job.accepted_unix_s, job.ended_unix_s,
-        status.iterations_done(), status.iterations_total());
+    store::StoredJob row;
+    row.id = job.id;
+    row.label = status.label();
+    row.state = status.state();
+    row.error = status.error();
+    row.owner = job.owner;
+    row.accepted_unix_s = job.accepted_unix_s;
+    row.ended_unix_s = job.ended_unix_s;
+    row.iterations_done = status.iterations_done();
+    row.iterations_total = status.iterations_total();
+    listed.push_back(std::move(row));
   }
-  return list;
+  return store::job_list(listed, false);
 }
 
 }  // namespace netmc::service

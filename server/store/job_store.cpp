@@ -181,6 +181,7 @@ JobStore::JobStore(const std::filesystem::path& directory, Retention retention, 
     throw StoreError("job store " + file_.string() + ": its directory is not writable (" +
                      std::system_category().message(errno) + "): the server could accept no job");
   }
+  lock_.emplace(directory);
   writer_db_ = open_database(file_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   try {
     {
@@ -360,17 +361,55 @@ void JobStore::ended(std::uint64_t id, const std::string& state, const std::stri
   enqueue(std::move(write));
 }
 
-std::vector<StoredJob> JobStore::list(const JobFilter& filter) {
-  std::lock_guard lock(reader_mutex_);
-  Statement query(reader_db_, ("SELECT " + job_columns(false, false) +
-                               " FROM jobs WHERE (?1 = '' OR state = ?1) AND (?2 = '' OR instr(label, ?2) > 0)"
-                               " AND accepted_unix_s >= ?3 ORDER BY id DESC LIMIT ?4")
-                                  .c_str());
+namespace {
+
+std::vector<StoredJob> list_jobs(sqlite3* db, const JobFilter& filter) {
+  Statement query(db, ("SELECT " + job_columns(false, false) +
+                       " FROM jobs WHERE (?1 = '' OR state = ?1) AND (?2 = '' OR instr(label, ?2) > 0)"
+                       " AND accepted_unix_s >= ?3 ORDER BY id DESC LIMIT ?4")
+                          .c_str());
   query.bind_text(1, filter.state).bind_text(2, filter.label_contains).bind(3, filter.since_unix_s);
   query.bind(4, static_cast<std::int64_t>(filter.limit));
   std::vector<StoredJob> jobs;
   while (query.step()) jobs.push_back(read_job_columns(query));
   return jobs;
+}
+
+}  // namespace
+
+std::vector<StoredJob> JobStore::list(const JobFilter& filter) {
+  std::lock_guard lock(reader_mutex_);
+  return list_jobs(reader_db_, filter);
+}
+
+std::vector<StoredJob> JobStore::read(const std::filesystem::path& directory, const JobFilter& filter) {
+  const auto file = directory / "jobs.sqlite";
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error)) {
+    throw StoreError("--state-dir " + directory.string() + ": no job store there (" + file.string() +
+                     " is missing): name the directory netmc-server's --state-dir names");
+  }
+  // Read-only, beside a server that may be writing (WAL: readers never wait for the writer), and
+  // taking no lock: a store that a server owns can still be read.
+  sqlite3* db = open_database(file, SQLITE_OPEN_READONLY);
+  try {
+    int version = 0;
+    {
+      Statement version_query(db, "PRAGMA user_version");
+      version_query.step();
+      version = static_cast<int>(version_query.integer(0));
+    }
+    if (version != kSchemaVersion) {
+      throw StoreError("schema version " + std::to_string(version) + ", this netmc reads " +
+                       std::to_string(kSchemaVersion) + (version > kSchemaVersion ? ": use a newer netmc" : ""));
+    }
+    auto jobs = list_jobs(db, filter);
+    sqlite3_close(db);
+    return jobs;
+  } catch (const StoreError& problem) {
+    sqlite3_close(db);
+    throw StoreError("job store " + file.string() + ": " + problem.what());
+  }
 }
 
 std::string JobStore::problem() const {

@@ -23,6 +23,8 @@
 #include <thread>
 #include <vector>
 
+#include "server/store/state_directory_lock.hpp"
+
 struct sqlite3;
 
 namespace netmc::store {
@@ -105,6 +107,10 @@ class JobStore {
 
   // netmc jobs: from a reading connection of its own (the writer is not waited for).
   std::vector<StoredJob> list(const JobFilter& filter);
+  // netmc jobs --state-dir: the same list from DIR/jobs.sqlite without a server, read-only (it
+  // creates nothing, takes no lock, and works while a server owns the store). Throws StoreError
+  // naming the file when there is no store of this schema there.
+  static std::vector<StoredJob> read(const std::filesystem::path& directory, const JobFilter& filter);
 
   // Empty while writes succeed; otherwise why the latest one failed.
   std::string problem() const;
@@ -125,6 +131,7 @@ class JobStore {
   void apply(Write& write);
   void prune(sqlite3* db);
 
+  std::optional<StateDirectoryLock> lock_;  // this server's, for the store's life
   std::filesystem::path file_;
   Retention retention_;
   std::size_t max_pending_;

@@ -4,7 +4,8 @@
 # the job store's integrity check passes after every kill, no iteration a watcher was shown is
 # lost, the queue runs to the end after the last restart, and every job that ended done gives
 # the JSON of `netmc sim` for its spec; a job that was running when the server died is failed
-# with "server restarted during iteration N". Then once in realtime: the axes stop on their
+# with "server restarted during iteration N". A second server on the same store refuses to start,
+# naming the first's pid. Then once in realtime: the axes stop on their
 # watchdog, and the job queued behind the killed one runs after the restart.
 # Usage: chaos_server_killed.sh BUILD_DIR KILLS SEED   (loopback only)
 source "$(dirname "$0")/lib.sh" "$@"
@@ -44,6 +45,14 @@ unfinished() {
 start x "$netmc_axis" --node chaos-x --axes x --domain "$domain" --transport udp
 start y "$netmc_axis" --node chaos-y --axes y --domain "$domain" --transport udp
 start_server
+# One server per job store: a second one on it refuses to start, naming the first's pid.
+second_rc=0
+timeout 20 "$netmc_server" --listen 127.0.0.1:0 --domain "$((domain + 1))" --transport udp --state-dir "$state" \
+  >"$tmp/second.log" 2>&1 || second_rc=$?
+if [ "$second_rc" -eq 0 ] || [ "$second_rc" -eq 124 ] || ! grep -q "another netmc-server (pid $server_pid)" "$tmp/second.log"; then
+  echo "FAIL: a second netmc-server on the same --state-dir: exit $second_rc:"; cat "$tmp/second.log"; exit 1
+fi
+echo "a second server on the same --state-dir: exit $second_rc, $(grep -o 'another netmc-server (pid [0-9]*)' "$tmp/second.log")"
 iterations=(6 14 9 20 11 7 16 12 8 18 10 15 5 13 17 19)
 submitter() {
   local n id
@@ -127,6 +136,11 @@ echo "events of the first jobs: $(sqlite3 "$state/jobs.sqlite" "SELECT count(*) 
 # --- Realtime: killed inside an iteration; the axes stop on their watchdog. ---
 kill -TERM "$server_pid"
 wait "$server_pid" 2>/dev/null || true
+# With the server down, netmc jobs --state-dir reads the same history from the store itself.
+"$netmc" jobs --state-dir "$state" --limit 10000 --json >"$tmp/jobs-offline.json"
+cmp -s "$tmp/jobs.json" "$tmp/jobs-offline.json" ||
+  { echo "FAIL: netmc jobs --state-dir differs from the server's list:"; diff "$tmp/jobs.json" "$tmp/jobs-offline.json" | head; exit 1; }
+echo "server down: netmc jobs --state-dir lists the same $(grep -c '"job_id"' "$tmp/jobs.json") jobs, byte for byte"
 start rx "$netmc_axis" --node chaos-rx --axes u --clock realtime --domain "$domain" --transport udp
 start ry "$netmc_axis" --node chaos-ry --axes v --clock realtime --domain "$domain" --transport udp
 rx_log=$tmp/rx.log

@@ -153,6 +153,93 @@ TEST_F(JobStoreTest, RefusesAFileThatIsNotADatabase) {
   EXPECT_THROW(JobStore(directory_, {}), StoreError);
 }
 
+// One server per store: a second store on the same directory, in this process or another, is
+// refused naming the holder's pid; the lock goes with its holder, however that ends.
+TEST_F(JobStoreTest, ASecondServerOnTheSameDirectoryIsRefusedNamingTheFirst) {
+  {
+    JobStore first(directory_, {});
+    try {
+      JobStore second(directory_, {});
+      ADD_FAILURE() << "a second store opened a directory another one owns";
+    } catch (const StoreError& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find("another netmc-server (pid " + std::to_string(::getpid()) + ")"), std::string::npos)
+          << message;
+      EXPECT_NE(message.find("--state-dir"), std::string::npos) << message;
+    }
+    EXPECT_EQ(first.accept(job("still owned")), 1u);  // the refusal took nothing from the owner
+  }
+  // Released with its owner; then held by a child that is killed with SIGKILL.
+  int ready[2];
+  ASSERT_EQ(::pipe(ready), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::close(ready[0]);
+    try {
+      JobStore owner(directory_, {});
+      const char byte = 'y';
+      if (::write(ready[1], &byte, 1) != 1) ::_exit(2);
+      ::pause();
+    } catch (...) {
+      ::_exit(1);
+    }
+    ::_exit(0);
+  }
+  ::close(ready[1]);
+  char byte = 0;
+  ASSERT_EQ(::read(ready[0], &byte, 1), 1) << "the child could not take a free store";
+  ::close(ready[0]);
+  try {
+    JobStore refused(directory_, {});
+    ADD_FAILURE() << "opened a store another process owns";
+  } catch (const StoreError& error) {
+    EXPECT_NE(std::string(error.what()).find("(pid " + std::to_string(child) + ")"), std::string::npos) << error.what();
+  }
+  ::kill(child, SIGKILL);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  JobStore after_kill(directory_, {});
+  EXPECT_EQ(after_kill.load(10).ended.size() + after_kill.load(10).unfinished.size(), 1u);
+}
+
+// netmc jobs --state-dir: the list a server gives, read from the file with the server running
+// (its lock taken) and after it closed; nothing created where there is no store.
+TEST_F(JobStoreTest, ReadListsWhatTheOwnerListsWithoutTheOwner) {
+  JobFilter all;
+  {
+    JobStore owner(directory_, {});
+    const auto first = owner.accept(job("first"));
+    owner.accept(job("second"));
+    owner.ended(first, "done", "", "finished");
+    owner.flush();
+    const auto beside = JobStore::read(directory_, all);
+    const auto listed = owner.list(all);
+    ASSERT_EQ(beside.size(), 2u);
+    ASSERT_EQ(listed.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+      EXPECT_EQ(beside[i].id, listed[i].id);
+      EXPECT_EQ(beside[i].state, listed[i].state);
+      EXPECT_EQ(beside[i].label, listed[i].label);
+    }
+    EXPECT_EQ(beside[0].label, "second");  // newest first
+  }
+  JobFilter done;
+  done.state = "done";
+  const auto after = JobStore::read(directory_, done);
+  ASSERT_EQ(after.size(), 1u);
+  EXPECT_EQ(after[0].label, "first");
+
+  const auto nowhere = directory_ / "no-store-here";
+  try {
+    JobStore::read(nowhere, all);
+    ADD_FAILURE() << "read a store that is not there";
+  } catch (const StoreError& error) {
+    EXPECT_NE(std::string(error.what()).find("jobs.sqlite is missing"), std::string::npos) << error.what();
+  }
+  EXPECT_FALSE(fs::exists(nowhere));
+}
+
 TEST_F(JobStoreTest, IdsAreNeverReusedAfterRetentionDeletes) {
   Retention keep_two;
   keep_two.keep_jobs = 2;
