@@ -275,7 +275,7 @@ void ConsoleService::tick_live() {
 }
 
 std::optional<bool> ConsoleService::authorized(const HttpRequest& request) const {
-  if (!options_.authorize) return false;
+  if (!options_.authorize) return std::nullopt;  // no token to show: the console only reads
   constexpr std::string_view kBearer = "Bearer ";
   if (request.authorization.rfind(kBearer, 0) != 0) return std::nullopt;
   return options_.authorize(request.authorization.substr(kBearer.size()));
@@ -400,6 +400,11 @@ HttpAnswer ConsoleService::cancel(std::uint64_t job_id, bool admin) {
   return json_answer(200, json{{"job", job_id}});
 }
 
+// A console whose server asks for no token changes nothing: anyone who reaches it could.
+constexpr const char* kReadOnly =
+    "this console is read-only: its server asks for no token (start netmc-server with --token-file to start and "
+    "cancel jobs here)";
+
 void ConsoleService::handle(const HttpRequest& request, std::function<void(HttpAnswer)> answer) {
   const std::string_view target = request.target;
   const bool get = request.method == "GET" || request.method == "HEAD";
@@ -423,6 +428,10 @@ void ConsoleService::handle(const HttpRequest& request, std::function<void(HttpA
   }
   if (target == "/api/jobs") {
     if (!only(post)) return;
+    if (!options_.authorize) {
+      answer(error_answer(403, kReadOnly));
+      return;
+    }
     const auto admin = authorized(request);
     if (!admin) {
       answer(error_answer(401, "starting a job needs the server's token (Authorization: Bearer TOKEN)"));
@@ -447,6 +456,10 @@ void ConsoleService::handle(const HttpRequest& request, std::function<void(HttpA
       return;
     }
     if (!only(post)) return;
+    if (!options_.authorize) {
+      answer(error_answer(403, kReadOnly));
+      return;
+    }
     const auto admin = authorized(request);
     if (!admin) {
       answer(error_answer(401, "cancelling a job needs the server's token (Authorization: Bearer TOKEN)"));
@@ -502,6 +515,9 @@ std::string ConsoleService::metrics_page() {
   page.sample(static_cast<double>(console_connections_));
   counter("netmc_console_messages_dropped_total", "Live messages dropped for browsers that read too slowly.",
           dropped_messages_);
+  counter("netmc_console_requests_refused_total",
+          "Console requests refused for their Host or Origin (another site, or another name: 403).",
+          refused_origins_);
   counter("netmc_console_samples_dropped_total", "Cycles the live feed let go (its reader behind, or busy).",
           dropped_samples_);
   return page.text();

@@ -48,7 +48,7 @@ struct HttpAnswer {
 struct ConsoleOptions {
   std::string version;
   // Who may change things: nullopt refuses the token; otherwise whether it is the admin's. Unset:
-  // the server asks for no token, anyone may.
+  // the server asks for no token, and the console is read-only (403 to every change).
   std::function<std::optional<bool>(const std::string& token)> authorize;
   bool token_required = false;
   // A job of a preset (its first run) and the presets' names (netmc's own presets).
@@ -85,6 +85,7 @@ class ConsoleService {
   // The console's own counters, for /metrics and the tests.
   void count_connection(int delta) { console_connections_ += delta; }
   void count_dropped_messages(std::uint64_t n) { dropped_messages_ += n; }
+  void count_refused_origin() { ++refused_origins_; }
   std::string metrics_page();
 
   void stop();
@@ -136,6 +137,7 @@ class ConsoleService {
   std::map<std::uint64_t, std::shared_ptr<LiveFeed>> feeds_;  // by job id, under feeds_mutex_
   std::int64_t console_connections_ = 0;
   std::uint64_t dropped_messages_ = 0;
+  std::uint64_t refused_origins_ = 0;
   std::uint64_t dropped_samples_ = 0;
   bool stopped_ = false;
 };

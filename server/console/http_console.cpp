@@ -47,13 +47,19 @@ std::string read_bounded(const std::string& path) {
 }  // namespace
 
 struct HttpConsole::State {
-  State(asio::io_context& context, ConsoleService& service, std::shared_ptr<asio::ssl::context> tls_context,
-        HttpConsoleLimits caps)
-      : io(context), console(service), acceptor(context), tls(std::move(tls_context)), limits(caps) {}
+  State(asio::io_context& context, ConsoleService& service, RequestOriginPolicy origin_policy,
+        std::shared_ptr<asio::ssl::context> tls_context, HttpConsoleLimits caps)
+      : io(context),
+        console(service),
+        acceptor(context),
+        origins(std::move(origin_policy)),
+        tls(std::move(tls_context)),
+        limits(caps) {}
 
   asio::io_context& io;
   ConsoleService& console;
   tcp::acceptor acceptor;
+  RequestOriginPolicy origins;
   std::shared_ptr<asio::ssl::context> tls;
   HttpConsoleLimits limits;
   std::map<std::string, StaticFile> files;  // by exact request target
@@ -221,6 +227,17 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
     if (error == http::error::body_limit) return respond_error(413, "request body too large", 11);
     if (error) return respond_error(400, "not an HTTP/1.1 request this server reads", 11);
     auto request = parser_->release();
+    // Before anything is served: a page of another site, or one reaching us under another name
+    // (DNS rebinding), gets nothing, not even the page's files or /live.
+    const auto header = [&request](http::field field) -> std::optional<std::string_view> {
+      const auto it = request.find(field);
+      if (it == request.end()) return std::nullopt;
+      return std::string_view(it->value().data(), it->value().size());
+    };
+    if (const auto why = state().origins.refusal(header(http::field::host), header(http::field::origin))) {
+      state().console.count_refused_origin();
+      return respond_error(403, *why, request.version());
+    }
     const std::string target(request.target());
     if (target.find('?') != std::string::npos || target.find('#') != std::string::npos) {
       return respond_error(400, "query strings are not used", request.version());
@@ -322,9 +339,9 @@ void accept(const std::shared_ptr<State>& state) {
 }  // namespace
 
 HttpConsole::HttpConsole(asio::io_context& io, ConsoleService& console, const std::string& bind_address,
-                         std::uint16_t port, std::shared_ptr<asio::ssl::context> tls, HttpConsoleLimits limits,
-                         const std::string& dygraphs_dir)
-    : state_(std::make_shared<State>(io, console, std::move(tls), limits)) {
+                         std::uint16_t port, RequestOriginPolicy origins, std::shared_ptr<asio::ssl::context> tls,
+                         HttpConsoleLimits limits, const std::string& dygraphs_dir)
+    : state_(std::make_shared<State>(io, console, std::move(origins), std::move(tls), limits)) {
   for (const auto& [target, name, type] :
        {std::tuple{"/", "index.html", "text/html; charset=utf-8"},
         std::tuple{"/index.html", "index.html", "text/html; charset=utf-8"},

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "server/console/console_service.hpp"
+#include "server/console/request_origin_policy.hpp"
 
 namespace netmc::console {
 
@@ -34,10 +35,11 @@ struct HttpConsoleLimits {
 class HttpConsole {
  public:
   // Listens on bind_address:port (port 0: any free port; see port()). With `tls`, HTTPS and WSS
-  // only. `dygraphs_dir`: where Debian's libjs-dygraphs is (read once, here). Throws
-  // std::runtime_error when it cannot listen.
+  // only. Every request, the page's files and /live's upgrade included, is refused (403) unless
+  // `origins` allows its Host and Origin headers. `dygraphs_dir`: where Debian's libjs-dygraphs
+  // is (read once, here). Throws std::runtime_error when it cannot listen.
   HttpConsole(boost::asio::io_context& io, ConsoleService& console, const std::string& bind_address,
-              std::uint16_t port, std::shared_ptr<boost::asio::ssl::context> tls = nullptr,
+              std::uint16_t port, RequestOriginPolicy origins, std::shared_ptr<boost::asio::ssl::context> tls = nullptr,
               HttpConsoleLimits limits = {}, const std::string& dygraphs_dir = "/usr/share/javascript/dygraphs");
   ~HttpConsole();
   HttpConsole(const HttpConsole&) = delete;

@@ -134,6 +134,15 @@ int main(int argc, char** argv) {
                  "--tls-cert's certificate if given; read-only without --token-file's or --admin-token-file's token "
                  "(docs/operations/console.md); default: off")
       ->envname("NETMC_HTTP");
+  std::vector<std::string> http_allow_hosts;
+  app.add_option("--http-allow-host", http_allow_hosts,
+                 "A name (or address) browsers reach the console by, besides localhost, 127.0.0.1, ::1 and --http's "
+                 "address: requests whose Host or Origin names another are refused (403), so no other site's page "
+                 "can use the console. Repeatable; '*' allows any (only behind a proxy that checks them)")
+      ->check([](const std::string& host) -> std::string {
+        if (host == "*" || netmc::console::RequestOriginPolicy::host_of(host)) return "";
+        return "expected a host name or address (no scheme, no path), or '*'";
+      });
   netmc::dds::add_time_base_option(app, time_base);
   netmc::dds::add_dds_options(app, dds);
   netmc::realtime::RealtimeScheduling scheduling;
@@ -278,10 +287,13 @@ int main(int argc, char** argv) {
       console = std::make_unique<netmc::console::ConsoleService>(io, jobs, std::move(console_options));
       // A browser shows no client certificate: the console's TLS asks for none.
       const auto console_tls = tls_cert.empty() ? nullptr : netmc::management::make_server_tls(tls_cert, tls_key, "");
-      http = std::make_unique<netmc::console::HttpConsole>(io, *console, http_address, http_port, console_tls);
-      spdlog::info("console on {}://{}:{}/ ({})", console_tls ? "https" : "http", http_address, http->port(),
+      auto origins = netmc::console::RequestOriginPolicy::loopback_and(http_address, http_allow_hosts);
+      http = std::make_unique<netmc::console::HttpConsole>(io, *console, http_address, http_port, origins, console_tls);
+      spdlog::info("console on {}://{}:{}/ ({}; answers to {})", console_tls ? "https" : "http", http_address,
+                   http->port(),
                    token || admin_token ? "starting and cancelling jobs need the token"
-                                        : "no token: anyone who reaches it may start and cancel jobs");
+                                        : "read-only: no --token-file, so no job is started or cancelled here",
+                   origins.describe());
     }
     boost::asio::signal_set signals(io, SIGINT, SIGTERM);
     signals.async_wait([&](const boost::system::error_code&, int) {

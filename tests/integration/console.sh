@@ -71,6 +71,25 @@ PY
 
 # The hostile checks with a job running, so the live feed has something to send.
 curl -s -f -X POST -H "Authorization: Bearer $token" -d "$job" "$url/api/jobs" >/dev/null
-/usr/bin/python3 "$(dirname "$0")/console_hostile.py" "$http" "$server_pid" --slow-reader-seconds 8
+/usr/bin/python3 "$(dirname "$0")/console_hostile.py" "$http" "$server_pid" --slow-reader-seconds 8 \
+  --token-file "$tmp/token"
 grep -q 'job [0-9]* failed' "$tmp/server.log" && { echo "FAIL: a job failed during the hostile checks"; grep failed "$tmp/server.log"; exit 1; }
 echo "no job failed"
+
+# A server without --token-file: its console is read-only, and it checks Host and Origin all the same.
+start open_server "$netmc_server" --listen 127.0.0.1:0 --http :0 --domain "$((domain + 1))" --transport udp
+for _ in $(seq 100); do grep -q 'console on' "$tmp/open_server.log" && break; sleep 0.1; done
+open_url=$(sed -n 's|.*console on \(http://127.0.0.1:[0-9]*\)/.*|\1|p' "$tmp/open_server.log")
+grep -q 'read-only' "$tmp/open_server.log" || { echo "FAIL: the log does not say the console is read-only"; exit 1; }
+code=$(curl -s -o "$tmp/read_only.json" -w '%{http_code}' -X POST -d "$job" "$open_url/api/jobs")
+[[ $code == 403 ]] && grep -q 'read-only' "$tmp/read_only.json" ||
+  { echo "FAIL: a job posted to a console without a token answered $code: $(cat "$tmp/read_only.json")"; exit 1; }
+code=$(curl -s -o /dev/null -w '%{http_code}' -X POST -d '{}' "$open_url/api/jobs/1/cancel")
+[[ $code == 403 ]] || { echo "FAIL: a cancel posted to a console without a token answered $code"; exit 1; }
+code=$(curl -s -o /dev/null -w '%{http_code}' -H 'Host: evil.example' "$open_url/api/state")
+[[ $code == 403 ]] || { echo "FAIL: a foreign Host got $code from a console without a token"; exit 1; }
+code=$(curl -s -o /dev/null -w '%{http_code}' -H 'Origin: http://evil.example' -H 'Content-Type: text/plain' \
+  -X POST -d "$job" "$open_url/api/jobs")
+[[ $code == 403 ]] || { echo "FAIL: a cross-site POST got $code from a console without a token"; exit 1; }
+[[ $(curl -s -o /dev/null -w '%{http_code}' "$open_url/api/state") == 200 ]] || { echo "FAIL: the read-only console does not read"; exit 1; }
+echo "without --token-file: start and cancel 403 (read-only), a foreign Host 403, a cross-site POST 403; /api/state 200"

@@ -4,7 +4,10 @@ that try to leave the fixed list of files, WebSocket frames over the limit, more
 the cap, and a fuzz pass of mutated requests. After each the console still answers. Also: a
 WebSocket client that never reads while a job runs keeps the server's memory bounded.
 
-Usage: console_hostile.py PORT SERVER_PID [--slow-reader-seconds S]
+Also: requests of another site's page (its Origin) and under another name (a foreign Host: DNS
+rebinding) get 403, the token shown or not, on every route and on /live's upgrade.
+
+Usage: console_hostile.py PORT SERVER_PID [--slow-reader-seconds S] [--token-file FILE]
 Exit 0 when every check holds; 1 with the failed check named.
 """
 import base64
@@ -53,7 +56,7 @@ def status_of(reply):
 
 
 def get(port, path, extra=b""):
-    return exchange(port, b"GET " + path + b" HTTP/1.1\r\nHost: x\r\nConnection: close\r\n" + extra + b"\r\n")
+    return exchange(port, b"GET " + path + b" HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n" + extra + b"\r\n")
 
 
 def still_answers(port, after):
@@ -74,6 +77,7 @@ def main():
     port = int(sys.argv[1])
     pid = int(sys.argv[2])
     slow_seconds = 8.0
+    token_file = sys.argv[sys.argv.index("--token-file") + 1] if "--token-file" in sys.argv else None
     if "--slow-reader-seconds" in sys.argv:
         slow_seconds = float(sys.argv[sys.argv.index("--slow-reader-seconds") + 1])
 
@@ -82,7 +86,7 @@ def main():
     if status_of(get(port, b"/metrics", big_header)) != 431:
         fail("a 9 KB header was not refused with 431")
     body = b"{" + b" " * 100_000 + b"}"
-    reply = exchange(port, b"POST /api/jobs HTTP/1.1\r\nHost: x\r\nContent-Length: " + str(len(body)).encode() +
+    reply = exchange(port, b"POST /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: " + str(len(body)).encode() +
                      b"\r\nConnection: close\r\n\r\n" + body)
     if status_of(reply) != 413:
         fail(f"a 100 KB body was not refused with 413: {reply[:100]!r}")
@@ -102,17 +106,45 @@ def main():
     print("9 paths outside the fixed list: 404, no file content")
 
     # Methods and the token.
-    if status_of(exchange(port, b"DELETE /api/state HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")) != 405:
+    if status_of(exchange(port, b"DELETE /api/state HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n")) != 405:
         fail("DELETE /api/state was not refused with 405")
-    reply = exchange(port, b"POST /api/jobs HTTP/1.1\r\nHost: x\r\nContent-Length: 20\r\nConnection: close\r\n\r\n"
+    reply = exchange(port, b"POST /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 20\r\nConnection: close\r\n\r\n"
                            b"{\"preset\":\"seed001\"}")
     if status_of(reply) != 401:
         fail(f"a job started without the token was not refused with 401: {reply[:120]!r}")
-    reply = exchange(port, b"POST /api/jobs HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer wrong-token-wrong-token\r\n"
+    reply = exchange(port, b"POST /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer wrong-token-wrong-token\r\n"
                            b"Content-Length: 20\r\nConnection: close\r\n\r\n{\"preset\":\"seed001\"}")
     if status_of(reply) != 401:
         fail("a job started with a wrong token was not refused with 401")
     print("DELETE 405; start without a token 401, with a wrong token 401")
+
+    # Another site's page, or this console under another name: 403 whatever the request carries.
+    token = open(token_file).read().strip() if token_file else "no-token-given"
+    job = b"{\"preset\":\"seed001\"}"
+    cross_site = [
+        (b"POST /api/jobs", b"Host: 127.0.0.1:" + str(port).encode() + b"\r\nOrigin: http://evil.example\r\n"
+         b"Content-Type: text/plain\r\nAuthorization: Bearer " + token.encode() + b"\r\n", job),
+        (b"POST /api/jobs/1/cancel", b"Host: 127.0.0.1\r\nOrigin: null\r\nAuthorization: Bearer " + token.encode() +
+         b"\r\n", b"{}"),
+        (b"GET /api/state", b"Host: evil.example:" + str(port).encode() + b"\r\n", b""),
+        (b"GET /metrics", b"Host: evil.example\r\n", b""),
+        (b"GET /", b"Host: rebound.evil.example\r\n", b""),
+        (b"GET /api/state", b"", b""),  # no Host at all
+        (b"GET /live", b"Host: 127.0.0.1\r\nOrigin: http://evil.example\r\nUpgrade: websocket\r\n"
+         b"Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n", b""),
+    ]
+    for line, headers, body in cross_site:
+        raw = line + b" HTTP/1.1\r\n" + headers + b"Content-Length: " + str(len(body)).encode() + \
+            b"\r\nConnection: close\r\n\r\n" + body
+        reply = exchange(port, raw)
+        if status_of(reply) != 403:
+            fail(f"{line.decode()} with {headers.decode().strip()!r} answered {reply[:120]!r}, not 403")
+    with_origin = exchange(port, b"GET /api/state HTTP/1.1\r\nHost: 127.0.0.1\r\nOrigin: http://127.0.0.1:" +
+                           str(port).encode() + b"\r\nConnection: close\r\n\r\n")
+    if status_of(with_origin) != 200:
+        fail(f"the console's own page (Origin http://127.0.0.1:{port}) was refused: {with_origin[:120]!r}")
+    print(f"{len(cross_site)} cross-site or foreign-Host requests (token {'shown' if token_file else 'none'}): 403; "
+          "the console's own origin: 200")
 
     # WebSocket: the hello, then a frame over 1 KiB closes the connection.
     ws = websocket.create_connection(f"ws://{HOST}:{port}/live", timeout=5)
@@ -134,7 +166,7 @@ def main():
             break
     if not closed:
         fail("a 5000-byte WebSocket frame did not close the connection")
-    if status_of(exchange(port, b"GET /other HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+    if status_of(exchange(port, b"GET /other HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
                                 b"Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n")) != 404:
         fail("a WebSocket upgrade outside /live was not refused")
     print("/live: hello first; a 5000-byte frame closed the connection; upgrades elsewhere 404")
@@ -167,11 +199,11 @@ def main():
 
     # Fuzz: mutated requests, each on a connection of its own; nothing crashes the server.
     rng = random.Random(20261126)
-    seeds = [b"GET /metrics HTTP/1.1\r\nHost: x\r\n\r\n",
-             b"POST /api/jobs HTTP/1.1\r\nHost: x\r\nContent-Length: 20\r\n\r\n{\"preset\":\"seed001\"}",
-             b"GET /live HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+    seeds = [b"GET /metrics HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n",
+             b"POST /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 20\r\n\r\n{\"preset\":\"seed001\"}",
+             b"GET /live HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
              b"Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n",
-             b"GET /api/jobs/1 HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nhello\r\n0\r\n\r\n"]
+             b"GET /api/jobs/1 HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nhello\r\n0\r\n\r\n"]
     answered = 0
     for i in range(600):
         raw = bytearray(rng.choice(seeds))
@@ -199,7 +231,7 @@ def main():
     key = base64.b64encode(os.urandom(16))
     stuck = socket.create_connection((HOST, port))
     stuck.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
-    stuck.sendall(b"GET /live HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Key: " +
+    stuck.sendall(b"GET /live HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Key: " +
                   key + b"\r\nSec-WebSocket-Version: 13\r\n\r\n")
     start_rss = rss_kib(pid)
     samples = []

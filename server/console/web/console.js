@@ -153,7 +153,7 @@
     setText($('server-version'), conn.version ? 'netmc-server ' + conn.version : '');
     let tokenText = '';
     if (conn.tokenRequired === true) tokenText = 'token required to start and cancel jobs';
-    else if (conn.tokenRequired === false) tokenText = 'no token required';
+    else if (conn.tokenRequired === false) tokenText = 'read-only: the server has no token (--token-file)';
     setText($('token-required'), tokenText);
     setAttr(line, 'data-token-required', conn.tokenRequired === null ? '' : conn.tokenRequired);
   }
