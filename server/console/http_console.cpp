@@ -9,6 +9,8 @@
 
 #include <deque>
 #include <fstream>
+#include <functional>
+#include <list>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -28,12 +30,6 @@ using PlainStream = beast::tcp_stream;
 using TlsStream = beast::ssl_stream<beast::tcp_stream>;
 
 constexpr std::size_t kMaxDygraphsFile = 4 * 1024 * 1024;
-
-// A fixed file of the console: what it is served as.
-struct StaticFile {
-  std::string content_type;
-  std::string body;
-};
 
 std::string read_bounded(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -56,6 +52,12 @@ struct HttpConsole::State {
         tls(std::move(tls_context)),
         limits(caps) {}
 
+  // A fixed file of the console: what it is served as.
+  struct StaticFile {
+    std::string content_type;
+    std::string body;
+  };
+
   asio::io_context& io;
   ConsoleService& console;
   tcp::acceptor acceptor;
@@ -64,6 +66,9 @@ struct HttpConsole::State {
   HttpConsoleLimits limits;
   std::map<std::string, StaticFile> files;  // by exact request target
   std::size_t connections = 0;
+  std::size_t live_sessions = 0;
+  // Connections waiting for (the rest of) a request, oldest first: each entry closes its one.
+  std::list<std::function<void()>> waiting_for_request;
   bool stopped = false;
 };
 
@@ -100,7 +105,12 @@ template <class Stream>
 class LiveSession : public std::enable_shared_from_this<LiveSession<Stream>> {
  public:
   LiveSession(Stream&& stream, std::unique_ptr<ConnectionCount> count)
-      : ws_(std::move(stream)), count_(std::move(count)) {}
+      : ws_(std::move(stream)), count_(std::move(count)) {
+    ++state().live_sessions;
+  }
+  ~LiveSession() { --state().live_sessions; }
+  LiveSession(const LiveSession&) = delete;
+  LiveSession& operator=(const LiveSession&) = delete;
 
   void run(http::request<http::string_body> request) {
     beast::get_lowest_layer(ws_).expires_never();  // the WebSocket's own timeouts from here
@@ -191,8 +201,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
  public:
   HttpSession(Stream&& stream, std::unique_ptr<ConnectionCount> count)
       : stream_(std::move(stream)), count_(std::move(count)) {}
+  ~HttpSession() { stop_waiting(); }
+  HttpSession(const HttpSession&) = delete;
+  HttpSession& operator=(const HttpSession&) = delete;
 
   void run() {
+    start_waiting();
     if constexpr (std::is_same_v<Stream, TlsStream>) {
       set_timeout(stream_, state().limits.request_timeout);
       stream_.async_handshake(asio::ssl::stream_base::server, [self = this->shared_from_this()](beast::error_code error) {
@@ -207,7 +221,27 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
  private:
   State& state() { return *count_->state(); }
 
+  // In the list of connections a new one may close at the cap, from the moment this one waits
+  // for a request until it has one (the io thread only: no lock).
+  void start_waiting() {
+    if (waiting_) return;
+    std::weak_ptr<HttpSession> weak = this->shared_from_this();
+    waiting_ = state().waiting_for_request.insert(state().waiting_for_request.end(), [weak] {
+      if (const auto self = weak.lock()) {
+        self->waiting_.reset();  // the acceptor took this entry off the list
+        beast::error_code ignored;
+        beast::get_lowest_layer(self->stream_).socket().close(ignored);  // its read ends, aborted
+      }
+    });
+  }
+  void stop_waiting() {
+    if (!waiting_ || !count_) return;
+    state().waiting_for_request.erase(*waiting_);
+    waiting_.reset();
+  }
+
   void read() {
+    start_waiting();
     parser_.emplace();
     parser_->header_limit(static_cast<std::uint32_t>(state().limits.max_header_bytes));
     parser_->body_limit(state().limits.max_body_bytes);
@@ -218,6 +252,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   }
 
   void on_read(beast::error_code error) {
+    stop_waiting();
     if (error == http::error::end_of_stream || error == beast::error::timeout || error == asio::error::eof ||
         error == asio::error::connection_reset || error == asio::error::operation_aborted) {
       shutdown();
@@ -244,6 +279,10 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
     }
     if (websocket::is_upgrade(request)) {
       if (target != "/live") return respond_error(404, "no WebSocket here (the live feed is /live)", request.version());
+      if (state().live_sessions >= state().limits.max_live_sessions) {
+        return respond_error(503, "too many live viewers (" + std::to_string(state().limits.max_live_sessions) + ")",
+                             request.version());
+      }
       std::make_shared<LiveSession<Stream>>(std::move(stream_), std::move(count_))->run(std::move(request));
       return;
     }
@@ -314,15 +353,25 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   std::unique_ptr<ConnectionCount> count_;
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
+  std::optional<std::list<std::function<void()>>::iterator> waiting_;
 };
 
 void accept(const std::shared_ptr<State>& state) {
   state->acceptor.async_accept(asio::make_strand(state->io), [state](beast::error_code error, tcp::socket socket) {
     if (state->stopped || error == asio::error::operation_aborted) return;
     if (!error) {
-      if (state->connections >= state->limits.max_connections) {
+      bool room = state->connections < state->limits.max_connections;
+      if (!room && !state->waiting_for_request.empty()) {
+        // Full: the connection that has waited longest for a request makes room (it is counted
+        // until its aborted read returns, so the count may pass the cap by those in closing).
+        const auto close_oldest = std::move(state->waiting_for_request.front());
+        state->waiting_for_request.pop_front();
+        close_oldest();
+        room = true;
+      }
+      if (!room) {
         beast::error_code ignored;
-        socket.close(ignored);  // full: closed at once, nothing read
+        socket.close(ignored);  // full of sessions that are not waiting: closed at once, nothing read
       } else {
         auto count = std::make_unique<ConnectionCount>(state);
         if (state->tls) {
@@ -347,7 +396,7 @@ HttpConsole::HttpConsole(asio::io_context& io, ConsoleService& console, const st
         std::tuple{"/index.html", "index.html", "text/html; charset=utf-8"},
         std::tuple{"/console.js", "console.js", "text/javascript; charset=utf-8"},
         std::tuple{"/console.css", "console.css", "text/css; charset=utf-8"}}) {
-    state_->files[target] = StaticFile{type, std::string(console_asset(name))};
+    state_->files[target] = State::StaticFile{type, std::string(console_asset(name))};
   }
   for (const auto& [name, type] : {std::pair{"dygraph.min.js", "text/javascript; charset=utf-8"},
                                    std::pair{"dygraph.min.css", "text/css; charset=utf-8"}}) {
@@ -357,7 +406,7 @@ HttpConsole::HttpConsole(asio::io_context& io, ConsoleService& console, const st
                    name);
       continue;
     }
-    state_->files[std::string("/javascript/dygraphs/") + name] = StaticFile{type, std::move(body)};
+    state_->files[std::string("/javascript/dygraphs/") + name] = State::StaticFile{type, std::move(body)};
   }
   beast::error_code error;
   const auto address = asio::ip::make_address(bind_address, error);

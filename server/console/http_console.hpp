@@ -4,8 +4,9 @@
 // the WebSocket feed. docs/operations/console.md is the contract.
 //
 // Hostile input is bounded here: a request's header and body, the time to send it, the number of
-// connections, a WebSocket frame from the browser, and each browser's queue of messages (the
-// oldest dropped first, counted). No request names a file: the files served are a fixed list.
+// connections (at the cap the longest-waiting sender of a request makes room), the number of /live
+// sessions, a WebSocket frame from the browser, and each browser's queue of messages (the oldest
+// dropped first, counted). No request names a file: the files served are a fixed list.
 // See docs/architecture.md, "Threads and queues".
 
 #include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange unincluded
@@ -24,7 +25,12 @@
 namespace netmc::console {
 
 struct HttpConsoleLimits {
+  // At the cap, a new connection closes the one that has waited longest for its request to come
+  // in (a slow or idle sender), if any; so slow senders cannot lock a browser out.
   std::size_t max_connections = 64;
+  // /live sessions, within max_connections: an upgrade beyond it gets 503, so that slow
+  // readers of the feed leave room for the page's requests.
+  std::size_t max_live_sessions = 32;
   std::chrono::milliseconds request_timeout{10000};  // to send one request (or finish TLS)
   std::size_t max_header_bytes = 8 * 1024;
   std::size_t max_body_bytes = 64 * 1024;

@@ -4,7 +4,8 @@ that try to leave the fixed list of files, WebSocket frames over the limit, more
 the cap, and a fuzz pass of mutated requests. After each the console still answers. Also: a
 WebSocket client that never reads while a job runs keeps the server's memory bounded.
 
-Also: requests of another site's page (its Origin) and under another name (a foreign Host: DNS
+Slow clients (64 /live readers that never read, 64 reconnecting slowloris senders) leave a page
+its requests: 40 of 40 answered. Also: requests of another site's page (its Origin) and under another name (a foreign Host: DNS
 rebinding) get 403, the token shown or not, on every route and on /live's upgrade.
 
 Usage: console_hostile.py PORT SERVER_PID [--slow-reader-seconds S] [--token-file FILE]
@@ -171,7 +172,7 @@ def main():
         fail("a WebSocket upgrade outside /live was not refused")
     print("/live: hello first; a 5000-byte frame closed the connection; upgrades elsewhere 404")
 
-    # More connections than the cap: the extra ones are closed, the console lives on.
+    # More connections than the cap, none sending a request: the longest-waiting ones make room.
     held = []
     for _ in range(80):
         try:
@@ -179,23 +180,80 @@ def main():
         except OSError:
             break
     time.sleep(0.5)
-    closed_at_once = 0
-    for s in held[64:]:
-        s.settimeout(1.0)
+    closed = []  # looked at all at once, well within the 10 s a request may take to arrive
+    for i, s in enumerate(held):
+        s.setblocking(False)
         try:
             if s.recv(1) == b"":
-                closed_at_once += 1
+                closed.append(i)
         except ConnectionResetError:
-            closed_at_once += 1
-        except socket.timeout:
+            closed.append(i)
+        except BlockingIOError:
             pass
     for s in held:
         s.close()
-    if closed_at_once < len(held) - 64 - 1:  # one may still be counted out by a closing neighbour
-        fail(f"of {len(held) - 64} connections over the cap only {closed_at_once} were closed")
+    over = len(held) - 64
+    if not over - 1 <= len(closed) <= over + 1 or (closed and max(closed) >= len(held) - over):
+        fail(f"of {len(held)} idle connections, these were closed: {closed} (expected the {over} oldest)")
     time.sleep(0.5)
     still_answers(port, "80 connections at once")
-    print(f"80 connections: {closed_at_once} over the cap of 64 closed at once; the console answers after")
+    print(f"80 idle connections: the {len(closed)} oldest closed to make room (cap 64); the console answers after")
+
+    # Slow clients cannot lock a browser out: 64 /live readers that never read, then 64 slowloris
+    # senders that reconnect as soon as they are closed; meanwhile 40 requests of a page.
+    def page_requests(count):
+        ok = 0
+        for _ in range(count):
+            try:
+                reply = exchange(port, b"GET /api/state HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n",
+                                 timeout=3.0)
+                ok += status_of(reply) == 200 and reply.rstrip().endswith(b"}")
+            except OSError:
+                pass
+            time.sleep(0.02)
+        return ok
+
+    readers, statuses = [], {}
+    for _ in range(64):
+        r = socket.create_connection((HOST, port), timeout=3)
+        r.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+        r.sendall(b"GET /live HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+                  b"Sec-WebSocket-Key: " + base64.b64encode(os.urandom(16)) + b"\r\nSec-WebSocket-Version: 13\r\n\r\n")
+        code = status_of(r.recv(12))
+        statuses[code] = statuses.get(code, 0) + 1
+        readers.append(r)
+    ok = page_requests(40)
+    for r in readers:
+        r.close()
+    if ok != 40:
+        fail(f"with 64 /live readers that never read ({statuses}), /api/state answered {ok} of 40")
+    print(f"64 /live readers that never read (upgrade answers {statuses}): /api/state 40 of 40")
+
+    import threading
+    stop = threading.Event()
+    def slowloris():
+        while not stop.is_set():
+            try:
+                s = socket.create_connection((HOST, port), timeout=2)
+                s.sendall(b"GET /api/state HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+                while not stop.is_set():  # a header line every 0.5 s, never the end of the request
+                    time.sleep(0.5)
+                    s.sendall(b"X-Slow: 1\r\n")
+            except OSError:
+                pass
+    threads = [threading.Thread(target=slowloris, daemon=True) for _ in range(64)]
+    for t in threads:
+        t.start()
+    time.sleep(1.0)
+    ok = page_requests(40)
+    stop.set()
+    for t in threads:
+        t.join(timeout=5)
+    if ok != 40:
+        fail(f"with 64 reconnecting slowloris senders, /api/state answered {ok} of 40")
+    print("64 reconnecting slowloris senders: /api/state 40 of 40")
+    time.sleep(0.5)
+    still_answers(port, "slow clients")
 
     # Fuzz: mutated requests, each on a connection of its own; nothing crashes the server.
     rng = random.Random(20261126)
