@@ -8,23 +8,23 @@
 namespace netmc::plant {
 namespace {
 
-constexpr const char* kOwner = "BallScrewDrive";
+constexpr const char* kBallScrewDriveOwner = "BallScrewDrive";
 
 BallScrewParameters validated(BallScrewParameters p) {
-  require_positive(kOwner, "inertia", p.inertia);
-  require_non_negative(kOwner, "damping", p.damping);
-  require_positive(kOwner, "amplifier_gain", p.amplifier_gain);
-  require_positive(kOwner, "torque_constant", p.torque_constant);
-  require_positive(kOwner, "lead_m_per_rad", p.lead_m_per_rad);
-  validate_disturbance(p.disturbance, kOwner);
-  require_positive(kOwner, "max_substep_s", p.max_substep_s);
+  require_positive(kBallScrewDriveOwner, "inertia", p.inertia);
+  require_non_negative(kBallScrewDriveOwner, "damping", p.damping);
+  require_positive(kBallScrewDriveOwner, "amplifier_gain", p.amplifier_gain);
+  require_positive(kBallScrewDriveOwner, "torque_constant", p.torque_constant);
+  require_positive(kBallScrewDriveOwner, "lead_m_per_rad", p.lead_m_per_rad);
+  validate_disturbance(p.disturbance, kBallScrewDriveOwner);
+  require_positive(kBallScrewDriveOwner, "max_substep_s", p.max_substep_s);
   return p;
 }
 
 }  // namespace
 
 BallScrewDrive::BallScrewDrive(BallScrewParameters p)
-    : TwoStateAxisPlant(kOwner),
+    : TwoStateAxisPlant(kBallScrewDriveOwner),
       p_(validated(p)),
       // Paper 002, eq. 1 divided by J s: motor torque Ka Kt (u + d) drives J theta'' + B theta',
       // and y = rg theta.
@@ -43,7 +43,7 @@ void BallScrewDrive::advance_piece(double t0, double duration, double input, dou
   }
   const double k = gain_;
   const double r = rate_;
-  const long long n = substep_count(kOwner, duration, p_.max_substep_s);
+  const long long n = substep_count(kBallScrewDriveOwner, duration, p_.max_substep_s);
   double y = state()(0);
   double v = state()(1);
   // Paper 002, eq. 1: y'' = -(B/J) y' + (Ka Kt rg / J) (u + d(t)).

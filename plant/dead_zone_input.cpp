@@ -9,20 +9,20 @@
 namespace netmc::plant {
 namespace {
 
-constexpr const char* kOwner = "DeadZoneInput";
+constexpr const char* kDeadZoneInputOwner = "DeadZoneInput";
 
 }  // namespace
 
 void validate_dead_zone(const DeadZoneParameters& p) {
-  require_non_negative(kOwner, "right_break_v", p.right_break_v);
-  require_finite(kOwner, "left_break_v", p.left_break_v);
+  require_non_negative(kDeadZoneInputOwner, "right_break_v", p.right_break_v);
+  require_finite(kDeadZoneInputOwner, "left_break_v", p.left_break_v);
   if (p.left_break_v > 0.0) {
     std::ostringstream text;
-    text << kOwner << ": left_break_v must be <= 0 (got " << p.left_break_v << ")";
+    text << kDeadZoneInputOwner << ": left_break_v must be <= 0 (got " << p.left_break_v << ")";
     throw std::invalid_argument(text.str());
   }
-  require_positive(kOwner, "right_slope", p.right_slope);
-  require_positive(kOwner, "left_slope", p.left_slope);
+  require_positive(kDeadZoneInputOwner, "right_slope", p.right_slope);
+  require_positive(kDeadZoneInputOwner, "left_slope", p.left_slope);
 }
 
 DeadZoneInput::DeadZoneInput(DeadZoneParameters dead_zone, std::unique_ptr<AxisPlant> inner)
@@ -32,7 +32,7 @@ DeadZoneInput::DeadZoneInput(DeadZoneParameters dead_zone, std::unique_ptr<AxisP
 }
 
 void DeadZoneInput::advance(double duration_s, double input) {
-  require_advance_arguments(kOwner, duration_s, input);
+  require_advance_arguments(kDeadZoneInputOwner, duration_s, input);
   inner_->advance(duration_s, dead_zone_output(dead_zone_, input));
 }
 

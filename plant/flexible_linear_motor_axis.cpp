@@ -11,19 +11,19 @@
 namespace netmc::plant {
 namespace {
 
-constexpr const char* kOwner = "FlexibleLinearMotorAxis";
+constexpr const char* kFlexibleLinearMotorAxisOwner = "FlexibleLinearMotorAxis";
 
 FlexibleLinearMotorParameters validated(FlexibleLinearMotorParameters p) {
-  require_finite(kOwner, "load_fraction", p.load_fraction);
+  require_finite(kFlexibleLinearMotorAxisOwner, "load_fraction", p.load_fraction);
   if (!(p.load_fraction > 0.0 && p.load_fraction < 1.0)) {
-    throw std::invalid_argument(std::string(kOwner) + ": load_fraction must be in (0, 1) (got " +
+    throw std::invalid_argument(std::string(kFlexibleLinearMotorAxisOwner) + ": load_fraction must be in (0, 1) (got " +
                                 std::to_string(p.load_fraction) + ")");
   }
-  require_positive(kOwner, "mode_frequency_hz", p.mode_frequency_hz);
-  require_non_negative(kOwner, "mode_damping_ratio", p.mode_damping_ratio);
-  require_positive(kOwner, "current_loop_hz", p.current_loop_hz);
-  validate_disturbance(p.disturbance, kOwner);
-  require_positive(kOwner, "max_substep_s", p.max_substep_s);
+  require_positive(kFlexibleLinearMotorAxisOwner, "mode_frequency_hz", p.mode_frequency_hz);
+  require_non_negative(kFlexibleLinearMotorAxisOwner, "mode_damping_ratio", p.mode_damping_ratio);
+  require_positive(kFlexibleLinearMotorAxisOwner, "current_loop_hz", p.current_loop_hz);
+  validate_disturbance(p.disturbance, kFlexibleLinearMotorAxisOwner);
+  require_positive(kFlexibleLinearMotorAxisOwner, "max_substep_s", p.max_substep_s);
   // The rigid part (mass, friction, cogging) is checked by LinearMotorAxis, which names itself.
   p.motor.disturbance = Disturbance{};
   return p;
@@ -32,7 +32,7 @@ FlexibleLinearMotorParameters validated(FlexibleLinearMotorParameters p) {
 }  // namespace
 
 FlexibleLinearMotorAxis::FlexibleLinearMotorAxis(FlexibleLinearMotorParameters p)
-    : PiecewiseAxisPlant(kOwner), p_(validated(std::move(p))), rigid_(p_.motor) {
+    : PiecewiseAxisPlant(kFlexibleLinearMotorAxisOwner), p_(validated(std::move(p))), rigid_(p_.motor) {
   const double total = p_.motor.mass;
   load_mass_ = p_.load_fraction * total;
   motor_mass_ = total - load_mass_;
@@ -69,7 +69,7 @@ FlexibleLinearMotorAxis::State FlexibleLinearMotorAxis::derivative(const State& 
 
 void FlexibleLinearMotorAxis::advance_piece(double t0, double duration, double input, double step_level) {
   const Disturbance& dist = p_.disturbance;
-  const long long n = substep_count(kOwner, duration, p_.max_substep_s);
+  const long long n = substep_count(kFlexibleLinearMotorAxisOwner, duration, p_.max_substep_s);
   const double h = duration / static_cast<double>(n);
   const double half = 0.5 * h;
   auto shifted = [](const State& z, const State& dz, double scale) {

@@ -15,35 +15,35 @@
 namespace netmc::plant {
 namespace {
 
-constexpr const char* kOwner = "LinearMotorAxis";
+constexpr const char* kLinearMotorAxisOwner = "LinearMotorAxis";
 
 LinearMotorParameters validated(LinearMotorParameters p) {
-  require_positive(kOwner, "mass", p.mass);
-  require_non_negative(kOwner, "damping", p.damping);
-  require_non_negative(kOwner, "coulomb", p.coulomb);
-  require_non_negative(kOwner, "stribeck_extra", p.stribeck_extra);
-  require_positive(kOwner, "stribeck_velocity", p.stribeck_velocity);
-  require_positive(kOwner, "friction_smoothing_velocity", p.friction_smoothing_velocity);
-  require_positive(kOwner, "cogging_pitch_m", p.cogging_pitch_m);
+  require_positive(kLinearMotorAxisOwner, "mass", p.mass);
+  require_non_negative(kLinearMotorAxisOwner, "damping", p.damping);
+  require_non_negative(kLinearMotorAxisOwner, "coulomb", p.coulomb);
+  require_non_negative(kLinearMotorAxisOwner, "stribeck_extra", p.stribeck_extra);
+  require_positive(kLinearMotorAxisOwner, "stribeck_velocity", p.stribeck_velocity);
+  require_positive(kLinearMotorAxisOwner, "friction_smoothing_velocity", p.friction_smoothing_velocity);
+  require_positive(kLinearMotorAxisOwner, "cogging_pitch_m", p.cogging_pitch_m);
   for (std::size_t i = 0; i < p.cogging.size(); ++i) {
     const std::string name = "cogging[" + std::to_string(i) + "]";
-    require_finite(kOwner, name + ".sine", p.cogging[i].sine);
-    require_finite(kOwner, name + ".cosine", p.cogging[i].cosine);
+    require_finite(kLinearMotorAxisOwner, name + ".sine", p.cogging[i].sine);
+    require_finite(kLinearMotorAxisOwner, name + ".cosine", p.cogging[i].cosine);
     if (p.cogging[i].order < 1) {
-      throw std::invalid_argument(std::string(kOwner) + ": " + name +
+      throw std::invalid_argument(std::string(kLinearMotorAxisOwner) + ": " + name +
                                   ".order must be an integer >= 1 (got " +
                                   std::to_string(p.cogging[i].order) + ")");
     }
   }
-  validate_disturbance(p.disturbance, kOwner);
-  require_positive(kOwner, "max_substep_s", p.max_substep_s);
+  validate_disturbance(p.disturbance, kLinearMotorAxisOwner);
+  require_positive(kLinearMotorAxisOwner, "max_substep_s", p.max_substep_s);
   return p;
 }
 
 }  // namespace
 
 LinearMotorAxis::LinearMotorAxis(LinearMotorParameters p)
-    : TwoStateAxisPlant(kOwner), p_(validated(std::move(p))) {
+    : TwoStateAxisPlant(kLinearMotorAxisOwner), p_(validated(std::move(p))) {
   bool cogging_off = true;
   wavenumbers_.reserve(p_.cogging.size());
   for (const CoggingHarmonic& h : p_.cogging) {
@@ -86,7 +86,7 @@ void LinearMotorAxis::advance_piece(double t0, double duration, double input, do
   }
   const double inv_mass = 1.0 / p_.mass;
   const double damping = p_.damping;
-  const long long n = substep_count(kOwner, duration, p_.max_substep_s);
+  const long long n = substep_count(kLinearMotorAxisOwner, duration, p_.max_substep_s);
   double y = state()(0);
   double v = state()(1);
   // Paper 000, eq. 2-43 / A.1: M y'' = u - B y' - Ff(y') - Fr(y) + d.

@@ -7,11 +7,11 @@
 namespace netmc::plant {
 namespace {
 
-constexpr const char* kOwner = "PositionSensor";
+constexpr const char* kPositionSensorOwner = "PositionSensor";
 
 PositionSensorParameters validated(PositionSensorParameters p) {
-  require_non_negative(kOwner, "resolution_m", p.resolution_m);
-  require_non_negative(kOwner, "noise_stddev_m", p.noise_stddev_m);
+  require_non_negative(kPositionSensorOwner, "resolution_m", p.resolution_m);
+  require_non_negative(kPositionSensorOwner, "noise_stddev_m", p.noise_stddev_m);
   return p;
 }
 

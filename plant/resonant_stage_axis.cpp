@@ -11,25 +11,25 @@
 namespace netmc::plant {
 namespace {
 
-constexpr const char* kOwner = "ResonantStageAxis";
+constexpr const char* kResonantStageAxisOwner = "ResonantStageAxis";
 
 ResonantStageParameters validated(ResonantStageParameters p) {
-  require_positive(kOwner, "mass", p.mass);
+  require_positive(kResonantStageAxisOwner, "mass", p.mass);
   for (std::size_t i = 0; i < p.modes.size(); ++i) {
     const std::string name = "modes[" + std::to_string(i) + "]";
-    require_finite(kOwner, name + ".gain", p.modes[i].gain);
-    require_non_negative(kOwner, name + ".damping_ratio", p.modes[i].damping_ratio);
-    require_positive(kOwner, name + ".frequency_hz", p.modes[i].frequency_hz);
+    require_finite(kResonantStageAxisOwner, name + ".gain", p.modes[i].gain);
+    require_non_negative(kResonantStageAxisOwner, name + ".damping_ratio", p.modes[i].damping_ratio);
+    require_positive(kResonantStageAxisOwner, name + ".frequency_hz", p.modes[i].frequency_hz);
   }
-  validate_disturbance(p.disturbance, kOwner);
-  require_positive(kOwner, "max_substep_s", p.max_substep_s);
+  validate_disturbance(p.disturbance, kResonantStageAxisOwner);
+  require_positive(kResonantStageAxisOwner, "max_substep_s", p.max_substep_s);
   return p;
 }
 
 }  // namespace
 
 ResonantStageAxis::ResonantStageAxis(ResonantStageParameters p)
-    : PiecewiseAxisPlant(kOwner), p_(validated(std::move(p))) {
+    : PiecewiseAxisPlant(kResonantStageAxisOwner), p_(validated(std::move(p))) {
   modes_.reserve(p_.modes.size());
   for (const ResonanceMode& m : p_.modes) {
     // Paper 004, eq. 1: denominator s^2 + 4 pi x f s + (2 pi f)^2 = s^2 + 2 x w s + w^2.
@@ -76,7 +76,7 @@ void ResonantStageAxis::advance_piece(double t0, double duration, double input, 
     return;
   }
   // RK4 on the full block-diagonal system equals RK4 on each block with the same sub-steps.
-  const long long n = substep_count(kOwner, duration, p_.max_substep_s);
+  const long long n = substep_count(kResonantStageAxisOwner, duration, p_.max_substep_s);
   auto force = [&](double t) { return input + smooth_part(d, t) + step_level; };
   double x = rigid_(0);
   double v = rigid_(1);

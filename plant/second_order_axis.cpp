@@ -12,23 +12,23 @@
 namespace netmc::plant {
 namespace {
 
-constexpr const char* kOwner = "SecondOrderAxis";
+constexpr const char* kSecondOrderAxisOwner = "SecondOrderAxis";
 
 SecondOrderAxisParameters validated(SecondOrderAxisParameters p) {
-  require_finite(kOwner, "a1", p.a1);
-  require_finite(kOwner, "a2", p.a2);
-  require_finite(kOwner, "b", p.b);
-  require_non_negative(kOwner, "coulomb_acceleration", p.coulomb_acceleration);
-  require_positive(kOwner, "coulomb_velocity_scale", p.coulomb_velocity_scale);
-  validate_disturbance(p.disturbance, kOwner);
-  require_positive(kOwner, "max_substep_s", p.max_substep_s);
+  require_finite(kSecondOrderAxisOwner, "a1", p.a1);
+  require_finite(kSecondOrderAxisOwner, "a2", p.a2);
+  require_finite(kSecondOrderAxisOwner, "b", p.b);
+  require_non_negative(kSecondOrderAxisOwner, "coulomb_acceleration", p.coulomb_acceleration);
+  require_positive(kSecondOrderAxisOwner, "coulomb_velocity_scale", p.coulomb_velocity_scale);
+  validate_disturbance(p.disturbance, kSecondOrderAxisOwner);
+  require_positive(kSecondOrderAxisOwner, "max_substep_s", p.max_substep_s);
   return p;
 }
 
 }  // namespace
 
 SecondOrderAxis::SecondOrderAxis(SecondOrderAxisParameters p)
-    : TwoStateAxisPlant(kOwner), p_(validated(std::move(p))) {
+    : TwoStateAxisPlant(kSecondOrderAxisOwner), p_(validated(std::move(p))) {
   // Paper 001, eq. 3 in state form z = [x1, x2]: x1' = x2, x2' = a1 x1 + a2 x2 + w, with the held
   // input w = b u + d entering the velocity equation.
   Eigen::Matrix2d a;
@@ -48,7 +48,7 @@ void SecondOrderAxis::advance_piece(double t0, double duration, double input, do
   const double inv_scale = 1.0 / p_.coulomb_velocity_scale;
   const double a1 = p_.a1;
   const double a2 = p_.a2;
-  const long long n = substep_count(kOwner, duration, p_.max_substep_s);
+  const long long n = substep_count(kSecondOrderAxisOwner, duration, p_.max_substep_s);
   double x = state()(0);
   double v = state()(1);
   // Paper 001, eq. 3 with netmc's assumed friction [A] -c tanh(x'/scale).

@@ -5,12 +5,6 @@
 #include "control/parameter_check.hpp"
 
 namespace netmc::control {
-namespace {
-
-double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
-
-}  // namespace
-
 MfaDtsmcAxis::MfaDtsmcAxis(const MfaDtsmcGains& gains, double sample_period_s)
     : gains_(gains),
       estimator_(gains.estimator),
@@ -61,7 +55,7 @@ AxisPrediction MfaDtsmcAxis::predict(double position, double desired, double des
   // eq. 24 with H = lambda(k) = 0, plus eq. 25's switching step, as the composite error wanted
   // one sample after e (the composition adds delta eps and divides by the gain).
   p.target = sliding_.next_sliding_variable(s_) / g.lambda1 + (1.0 - g.beta) * e -
-             g.lambda2 / g.lambda1 * signed_power(e, g.alpha) - gains_.switching_gain * sign(s_);
+             g.lambda2 / g.lambda1 * signed_power(e, g.alpha) - gains_.switching_gain * signum(s_);
   previous_position_ = position;
   previous_error_ = e;
   return p;

@@ -18,11 +18,11 @@ double open_unit(double value, std::string_view field) {
 
 double bounded(double x) { return std::clamp(x, -kMaxHyperbolicArgument, kMaxHyperbolicArgument); }
 
-double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
-
 }  // namespace
 
-double signed_power(double e, double alpha) { return sign(e) * std::pow(std::abs(e), alpha); }
+double signum(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+
+double signed_power(double e, double alpha) { return signum(e) * std::pow(std::abs(e), alpha); }
 
 TerminalSlidingMode::TerminalSlidingMode(const TerminalSlidingModeGains& gains, double sample_period_s)
     : gains_(gains) {
@@ -53,7 +53,7 @@ double TerminalSlidingMode::next_sliding_variable(double s) const {
   // sign beyond the band; cosh(delta2 s) breaks that once |s| is large, so the switching step is
   // bounded by E1 |s|.
   const double step = std::min(e2(s), contraction * std::abs(s) + gains_.lambda);
-  return contraction * s - step * sign(s);
+  return contraction * s - step * signum(s);
 }
 
 std::string TerminalSlidingMode::describe() const {

@@ -23,6 +23,8 @@ struct TerminalSlidingModeGains {
 inline constexpr double kMaxHyperbolicArgument = 20.0;
 
 // sign(e) |e|^alpha
+// -1, 0 or +1: the sign of x (0 for 0).
+double signum(double x);
 double signed_power(double e, double alpha);
 
 class TerminalSlidingMode {

@@ -11,7 +11,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-void require_positive(double value, const char* name) {
+void require_positive_finite(double value, const char* name) {
   if (!(value > 0.0) || !std::isfinite(value)) {
     throw std::invalid_argument(std::string("drive: ") + name + " must be a positive finite number");
   }
@@ -35,11 +35,11 @@ double probe_input_gain(const plant::AxisPlant& plant, double amplitude) {
 
 void EmulatedDriveSettings::validate() const {
   if (!(max_input > 0.0)) throw std::invalid_argument("drive: max_input must be a positive number");
-  require_positive(quick_stop_deceleration_m_s2, "quick_stop_deceleration");
-  require_positive(cycle_s, "cycle");
-  require_positive(velocity_loop_hz, "velocity_loop_hz");
-  require_positive(standstill_velocity_m_s, "standstill_velocity");
-  require_positive(position_window_m, "position_window");
+  require_positive_finite(quick_stop_deceleration_m_s2, "quick_stop_deceleration");
+  require_positive_finite(cycle_s, "cycle");
+  require_positive_finite(velocity_loop_hz, "velocity_loop_hz");
+  require_positive_finite(standstill_velocity_m_s, "standstill_velocity");
+  require_positive_finite(position_window_m, "position_window");
 }
 
 EmulatedDrive::EmulatedDrive(std::unique_ptr<plant::AxisPlant> plant, EmulatedDriveSettings settings)

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "server/job/quantity_text.hpp"
+
 namespace netmc::job {
 namespace {
 
@@ -16,16 +18,10 @@ namespace {
   throw std::invalid_argument(field + ": " + message);
 }
 
-std::string joined(const std::vector<std::string>& words, const char* separator = ", ") {
-  std::string text;
-  for (const auto& word : words) text += (text.empty() ? "" : separator) + word;
-  return text;
-}
-
 std::string key_names(const GainGroup& group) {
   std::vector<std::string> names;
   for (const auto& key : group.keys) names.push_back(key.name);
-  return joined(names);
+  return join_list(names);
 }
 
 const char* check_form(GainCheck check) {
@@ -65,7 +61,7 @@ void check_set(const Set& set, const GainGroup& group, const std::string& path) 
   for (const auto& [name, choice] : set.choices()) {
     const GainKey& key = known(name, GainKey::Kind::choice, "a choice");
     if (std::find(key.choices.begin(), key.choices.end(), choice) == key.choices.end()) {
-      fail(path + "." + name, "expected " + joined(key.choices, " or ") + ", got '" + choice.substr(0, 64) + "'");
+      fail(path + "." + name, "expected " + join_list(key.choices, " or ") + ", got '" + choice.substr(0, 64) + "'");
     }
   }
   for (const auto& [name, list] : set.lists()) {
@@ -90,7 +86,7 @@ void set_from_text(const GainKey& key, const std::string& text, const std::strin
     }
     case GainKey::Kind::choice:
       if (std::find(key.choices.begin(), key.choices.end(), text) == key.choices.end()) {
-        fail(field, "expected " + joined(key.choices, " or ") + ", got '" + text.substr(0, 64) + "'");
+        fail(field, "expected " + join_list(key.choices, " or ") + ", got '" + text.substr(0, 64) + "'");
       }
       (*out.mutable_choices())[key.name] = text;
       return;
@@ -134,7 +130,7 @@ std::string GainGroup::syntax() const {
     if (text.find(shown + "=") != std::string::npos) continue;  // an alias of two keys, once
     text += (text.empty() ? "" : ",") + shown + "=";
     if (key.kind == GainKey::Kind::choice) {
-      text += joined(key.choices, "|");
+      text += join_list(key.choices, "|");
     } else if (key.kind == GainKey::Kind::list) {
       text += fmt::format("{} numbers;..", key.list_size);
     } else {
@@ -152,14 +148,14 @@ void check_gains(const netmc::v1::ControllerSpec& spec, const std::vector<const 
     if (found == groups.end()) {
       std::vector<std::string> names;
       for (const auto* g : groups) names.push_back(g->name);
-      fail(path, "no such gains group (expected one of: " + joined(names) + ")");
+      fail(path, "no such gains group (expected one of: " + join_list(names) + ")");
     }
     const GainGroup& group = **found;
     check_set(gains, group, path);
     for (const auto& [axis, own] : gains.axes()) {
       if (!group.per_axis) fail(path + ".axes", "the group takes no per-axis values");
       if (std::find(axis_names.begin(), axis_names.end(), axis) == axis_names.end()) {
-        fail(path + ".axes." + axis.substr(0, 64), "not an axis of the job (expected one of: " + joined(axis_names) + ")");
+        fail(path + ".axes." + axis.substr(0, 64), "not an axis of the job (expected one of: " + join_list(axis_names) + ")");
       }
       check_set(own, group, path + ".axes." + axis);
     }
@@ -283,8 +279,8 @@ void parse_gain_flag(std::string_view text, const GainGroup& group, const std::v
     if (keys.empty()) {
       std::vector<std::string> names;
       for (const auto& key : group.keys) names.push_back(key.flag_aliases.empty() ? key.name : key.flag_aliases.front());
-      fail(group.flag, "unknown key '" + target.substr(0, 64) + "' (expected one of: " + joined(names) +
-                           (group.per_axis ? ", or AXIS.KEY with AXIS one of " + joined(axis_names) : std::string()) + ")");
+      fail(group.flag, "unknown key '" + target.substr(0, 64) + "' (expected one of: " + join_list(names) +
+                           (group.per_axis ? ", or AXIS.KEY with AXIS one of " + join_list(axis_names) : std::string()) + ")");
     }
     for (const GainKey* key : keys) {
       if (!given.emplace(axis, key->name).second) {

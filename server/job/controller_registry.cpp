@@ -11,6 +11,8 @@
 #include "server/plugins/component_plugin_spec.hpp"
 #include "server/plugins/loaded_component_plugin.hpp"
 
+#include "server/job/quantity_text.hpp"
+
 namespace netmc::job {
 namespace {
 
@@ -24,12 +26,6 @@ const char* role_name(ControllerRole role) {
     case ControllerRole::tracking: return "single-axis law";
   }
   return "?";
-}
-
-std::string joined(const std::vector<std::string>& words, const char* separator = ", ") {
-  std::string text;
-  for (const auto& word : words) text += (text.empty() ? "" : separator) + word;
-  return text;
 }
 
 // Errors of the laws (their constructors check their gains) read "controller: ...".
@@ -102,7 +98,7 @@ std::string ControllerRegistry::names_help() const {
   }
   return fmt::format("AXIS[+COMPENSATOR] with AXIS one of {} and COMPENSATOR one of {}; {}; one axis "
                      "(--trajectory multi-sine): {}; plugin:PATH.so[:KEY=VALUE,...] (netmc sim --list-controllers)",
-                     joined(axis), joined(compensators), joined(groups), joined(tracking));
+                     join_list(axis), join_list(compensators), join_list(groups), join_list(tracking));
 }
 
 std::string ControllerRegistry::markdown_table() const {
@@ -114,11 +110,11 @@ std::string ControllerRegistry::markdown_table() const {
     for (const auto& group_name : family.gain_groups) flags.push_back("`" + gain_group(group_name)->flag + "`");
     std::vector<std::string> names;
     for (const auto& name : family.names) names.push_back("`" + name + "`");
-    table += fmt::format("| {} | {} | {} | {} | {} | {} |\n", joined(names), role_name(family.role),
-                         flags.empty() ? "none" : joined(flags), family.source,
+    table += fmt::format("| {} | {} | {} | {} | {} | {} |\n", join_list(names), role_name(family.role),
+                         flags.empty() ? "none" : join_list(flags), family.source,
                          family.plants.empty() ? "none: needs `" + gain_group(family.gain_groups.front())->flag + " " +
                                                      family.required_gains.front() + "=`"
-                                               : joined(family.plants),
+                                               : join_list(family.plants),
                          family.summary);
   }
   return table;
@@ -273,7 +269,7 @@ ControllerFactory ControllerRegistry::resolve(const netmc::v1::ControllerSpec& s
   if (!spec.estimator().empty()) {
     const auto known = control::contour_error_estimator_names();
     if (std::find(known.begin(), known.end(), spec.estimator()) == known.end()) {
-      throw std::invalid_argument("controller.estimator: expected one of " + joined(known) + ", got '" +
+      throw std::invalid_argument("controller.estimator: expected one of " + join_list(known) + ", got '" +
                                   spec.estimator().substr(0, 64) + "'");
     }
   }

@@ -16,6 +16,8 @@ std::string_view trim(std::string_view text);
 
 // "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
 std::vector<std::string> split_list(const std::string& text);
+// {"a", "b"} -> "a, b" (with separator ", ").
+std::string join_list(const std::vector<std::string>& words, const char* separator = ", ");
 
 // "10mm" -> 0.01 (length), "0.5ms" -> 5e-4 (time), "20mm/s" -> 0.02 (speed),
 // "0.5m/s2" -> 0.5 (acceleration; also m/s^2, mm/s2), "3" -> 3 (SI). `field` names the flag/key.

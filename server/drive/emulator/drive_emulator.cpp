@@ -25,11 +25,6 @@ namespace netmc::drive::emulator {
 namespace {
 
 constexpr std::size_t kHeaderLength = 7;  // MBAP: transaction, protocol, length, unit
-constexpr std::uint8_t kIllegalFunction = 1;
-constexpr std::uint8_t kIllegalDataAddress = 2;
-constexpr std::uint8_t kIllegalDataValue = 3;
-constexpr std::uint8_t kServerDeviceFailure = 4;
-constexpr std::uint8_t kGatewayTargetFailed = 0x0B;  // a request for a unit this server is not
 
 std::uint16_t word_at(const std::uint8_t* bytes) { return static_cast<std::uint16_t>(bytes[0] << 8 | bytes[1]); }
 

@@ -11,10 +11,6 @@ namespace {
 
 using modbus::DriveObject;
 
-constexpr std::uint8_t kIllegalDataAddress = 2;
-constexpr std::uint8_t kIllegalDataValue = 3;
-constexpr std::uint8_t kServerDeviceFailure = 4;
-
 std::size_t slot(DriveObject object) { return static_cast<std::size_t>(object); }
 
 std::string registers_text(const modbus::RegisterPlacement& placement) {

@@ -18,6 +18,13 @@
 
 namespace netmc::drive::emulator {
 
+// Modbus exception codes (Modbus Application Protocol 1.1b3, section 7).
+inline constexpr std::uint8_t kIllegalFunction = 1;
+inline constexpr std::uint8_t kIllegalDataAddress = 2;
+inline constexpr std::uint8_t kIllegalDataValue = 3;
+inline constexpr std::uint8_t kServerDeviceFailure = 4;
+inline constexpr std::uint8_t kGatewayTargetFailed = 0x0B;  // a request for a unit this server is not
+
 struct RegisterAccess {
   std::uint8_t exception = 0;  // 0 when done, else the Modbus exception code to answer
   std::string why;             // for the log, when refused

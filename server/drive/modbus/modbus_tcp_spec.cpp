@@ -21,7 +21,7 @@ bool host_name(const std::string& text) {
          text.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789.-") == std::string::npos;
 }
 
-std::string quoted(const std::string& text) { return "'" + text.substr(0, 80) + (text.size() > 80 ? "...'" : "'"); }
+std::string quoted_excerpt(const std::string& text) { return "'" + text.substr(0, 80) + (text.size() > 80 ? "...'" : "'"); }
 
 }  // namespace
 
@@ -39,16 +39,16 @@ ModbusTcpSpec parse_modbus_tcp_spec(const std::string& text) {
   const std::string address = text.substr(0, comma);
   const std::size_t colon = address.rfind(':');
   if (colon == std::string::npos) {
-    throw fail("address", "expected HOST:PORT[,unit=N][,map=FILE][,timeout=DURATION], got " + quoted(address));
+    throw fail("address", "expected HOST:PORT[,unit=N][,map=FILE][,timeout=DURATION], got " + quoted_excerpt(address));
   }
   ModbusTcpSpec spec;
   spec.host = address.substr(0, colon);
   if (!host_name(spec.host)) {
-    throw fail("host", "expected an IPv4 address or a host name (letters, digits, '.', '-'), got " + quoted(spec.host));
+    throw fail("host", "expected an IPv4 address or a host name (letters, digits, '.', '-'), got " + quoted_excerpt(spec.host));
   }
   const std::string port = address.substr(colon + 1);
   if (!all_digits(port, 5) || std::stoi(port) < 1 || std::stoi(port) > 65535) {
-    throw fail("port", "expected 1..65535, got " + quoted(port));
+    throw fail("port", "expected 1..65535, got " + quoted_excerpt(port));
   }
   spec.port = static_cast<std::uint16_t>(std::stoi(port));
   std::set<std::string> given;
@@ -60,19 +60,19 @@ ModbusTcpSpec parse_modbus_tcp_spec(const std::string& text) {
     const std::size_t equals = item.find('=');
     const std::string key = item.substr(0, equals);
     if (equals == std::string::npos || (key != "unit" && key != "map" && key != "timeout")) {
-      throw fail(quoted(item), "expected unit=N, map=FILE or timeout=DURATION");
+      throw fail(quoted_excerpt(item), "expected unit=N, map=FILE or timeout=DURATION");
     }
     if (!given.insert(key).second) throw fail(key, "given twice");
     const std::string value = item.substr(equals + 1);
     if (key == "unit") {
-      if (!all_digits(value, 3) || std::stoi(value) > 255) throw fail("unit", "expected 0..255, got " + quoted(value));
+      if (!all_digits(value, 3) || std::stoi(value) > 255) throw fail("unit", "expected 0..255, got " + quoted_excerpt(value));
       spec.unit = static_cast<std::uint8_t>(std::stoi(value));
     } else if (key == "map") {
       if (value.empty()) throw fail("map", "expected the path of a register map file");
       spec.map_path = value;
     } else {
       const double seconds = parse_duration_s(value, where + ": timeout");
-      if (!(seconds >= 1e-3 && seconds <= 10.0)) throw fail("timeout", "expected 1ms..10s, got " + quoted(value));
+      if (!(seconds >= 1e-3 && seconds <= 10.0)) throw fail("timeout", "expected 1ms..10s, got " + quoted_excerpt(value));
       spec.timeout_s = seconds;
     }
   }
