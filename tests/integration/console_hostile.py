@@ -257,11 +257,14 @@ def main():
 
     # Fuzz: mutated requests, each on a connection of its own; nothing crashes the server.
     rng = random.Random(20261126)
-    seeds = [b"GET /metrics HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n",
-             b"POST /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 20\r\n\r\n{\"preset\":\"seed001\"}",
+    # Connection: close, so that a request the server answers is not then waited on for 0.5 s.
+    seeds = [b"GET /metrics HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n",
+             b"POST /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\nContent-Length: 20\r\n\r\n"
+             b"{\"preset\":\"seed001\"}",
              b"GET /live HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
              b"Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n",
-             b"GET /api/jobs/1 HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nhello\r\n0\r\n\r\n"]
+             b"GET /api/jobs/1 HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\nTransfer-Encoding: chunked\r\n\r\n"
+             b"5\r\nhello\r\n0\r\n\r\n"]
     answered = 0
     for i in range(600):
         raw = bytearray(rng.choice(seeds))

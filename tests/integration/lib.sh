@@ -55,8 +55,22 @@ cleanup() {
 }
 trap 'status=$?; cleanup || status=1; exit "$status"' EXIT
 
-# A DDS domain of its own for each run, so concurrent runs do not meet.
-domain=$(( 100 + RANDOM % 100 ))
+# A block of 8 DDS domains of its own for each run ($domain up to $domain + 7: a test that starts
+# another cluster beside or after the first takes the next ones), held by a lock while the test
+# and anything it started live (the descriptor is inherited), so that tests running side by side
+# never meet. 27 blocks, domains 16..231 (Fast DDS's ports allow up to 232).
+netmc__domains=${TMPDIR:-/tmp}/netmc-test-domains
+mkdir -p "$netmc__domains"
+domain=""
+for block in $(shuf -i 0-26); do
+  exec {netmc__domain_fd}>"$netmc__domains/block-$block"
+  if flock -n "$netmc__domain_fd"; then
+    domain=$((16 + 8 * block))
+    break
+  fi
+  exec {netmc__domain_fd}>&-
+done
+[ -n "$domain" ] || { echo "$0: all 27 blocks of DDS domains are taken by other tests" >&2; exit 1; }
 
 # start NAME COMMAND...: lab_start NAME - -- COMMAND... (processes.sh: on this machine's network,
 # in a session of its own, output in $tmp/NAME.log); its pid is appended to pids.
