@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <iostream>
@@ -73,12 +74,19 @@ void print_iteration(const std::string& label, const netmc::v1::IterationUpdate&
                               : "");
 }
 
+// A followed job's end: its result (for a job that did not end done, the iterations it kept) and,
+// unless it ended done, why not.
+struct FollowedJob {
+  RunOutcome outcome;
+  std::string failure;
+};
+
 // Reads a job's iterations, then its end, from `client` (the answers to a submit or a watch);
 // `silence_limit`: how long the server may say nothing before the job is given up (none: as long
 // as the connection lasts).
-RunOutcome follow_job(management::ManagementClient& client, std::uint64_t job_id, const std::string& label,
-                      const std::string& server, bool quiet, std::optional<std::chrono::milliseconds> silence_limit,
-                      const std::function<void()>& on_iteration) {
+FollowedJob follow_job(management::ManagementClient& client, std::uint64_t job_id, const std::string& label,
+                       const std::string& server, bool quiet, std::optional<std::chrono::milliseconds> silence_limit,
+                       const std::function<void()>& on_iteration) {
   while (true) {
     std::optional<netmc::v1::Response> response;
     do {
@@ -96,15 +104,14 @@ RunOutcome follow_job(management::ManagementClient& client, std::uint64_t job_id
       const auto& finished = response->finished();
       // An ended job cannot be cancelled: the token netmc submit saved for it is needed no more.
       forget_job_token(server, job_id);
+      FollowedJob followed;
+      followed.outcome.result = finished.result();
       if (finished.state() != "done") {
-        throw std::runtime_error(fmt::format("job {} ({}) {}: {}", job_id, label, finished.state(), finished.error()));
+        followed.failure = fmt::format("job {} ({}) {}: {}", job_id, label, finished.state(), finished.error());
+      } else if (followed.outcome.result.iterations_size() == 0) {
+        followed.failure = fmt::format("job {} ({}) finished without iterations", job_id, label);
       }
-      RunOutcome outcome;
-      outcome.result = finished.result();
-      if (outcome.result.iterations_size() == 0) {
-        throw std::runtime_error(fmt::format("job {} ({}) finished without iterations", job_id, label));
-      }
-      return outcome;
+      return followed;
     }
   }
 }
@@ -138,7 +145,9 @@ RunOutcome run_job_on_server(management::ManagementClient& client, const netmc::
   if (!quiet) std::cerr << fmt::format("job {} ({}) accepted by {}\n", job_id, label, server);
   // An iteration takes seconds in realtime and milliseconds in lockstep; nodes may need
   // discovery time first.
-  return follow_job(client, job_id, label, server, quiet, std::chrono::seconds(120), on_iteration);
+  auto followed = follow_job(client, job_id, label, server, quiet, std::chrono::seconds(120), on_iteration);
+  if (!followed.failure.empty()) throw std::runtime_error(followed.failure);
+  return std::move(followed.outcome);
 }
 
 std::function<int()> add_run_command(CLI::App& app) {
@@ -253,14 +262,23 @@ std::function<int()> add_watch_command(CLI::App& app) {
                                status.waiting_for().empty() ? "" : ", waits for " + status.waiting_for());
     }
     // A queued job may wait behind long ones: the watch lasts as long as the connection.
-    std::vector<RunOutcome> outcomes;
-    outcomes.push_back(
-        follow_job(client, flags->job, status.label(), flags->server, verbosity().quiet, std::nullopt, {}));
+    auto followed = follow_job(client, flags->job, status.label(), flags->server, verbosity().quiet, std::nullopt, {});
+    // A job that failed or was cancelled: its kept iterations are written and shown all the same.
+    if (followed.outcome.result.iterations_size() == 0) throw std::runtime_error(followed.failure);
+    std::vector<RunOutcome> outcomes{std::move(followed.outcome)};
     if (!flags->json_path.empty()) write_output(flags->json_path, study_json(outcomes));
     StudyPlan plan;
     plan.title = fmt::format("job {} on {}", flags->job, flags->server);
-    plan.steady_metrics = outcomes.front().result.evaluation_start_s() > 0.0;
+    // netmc run's table: the steady-window one only where the runs had a steady window (the
+    // presets that ask for it set their evaluation start inside the iteration).
+    plan.steady_metrics = std::any_of(outcomes.front().result.iterations().begin(),
+                                      outcomes.front().result.iterations().end(),
+                                      [](const auto& m) { return m.has_e_rms_steady_m(); });
     print_study_table(report, plan, outcomes);
+    if (!followed.failure.empty()) throw std::runtime_error(followed.failure + " (its " +
+                                                            std::to_string(outcomes.front().result.iterations_size()) +
+                                                            " kept iterations are above" +
+                                                            (flags->json_path.empty() ? "" : " and in " + flags->json_path) + ")");
     return 0;
   };
 }

@@ -261,10 +261,25 @@ std::vector<std::shared_ptr<Job>> JobRegistry::restore_from_store() {
 
 netmc::v1::JobList JobRegistry::list_jobs(const netmc::v1::ListJobs& request) const {
   const auto filter = store::job_filter(request);
-  // The store's state lags the memory's by the writes queued: a running job is "running" in both;
-  // its end shows once written.
-  if (options_.store) return store::job_list(options_.store->list(filter), true);
   std::vector<store::StoredJob> listed;
+  if (options_.store) {
+    // The store lags the memory by the writes still queued (a job that has just started, or
+    // ended): a job the service still holds is listed as netmc status shows it.
+    listed = options_.store->list(filter);
+    std::lock_guard lock(mutex_);
+    for (auto& row : listed) {
+      const auto held = jobs_.find(row.id);
+      if (held == jobs_.end()) continue;
+      const auto& status = held->second->status;
+      row.state = status.state();
+      row.error = status.error();
+      row.iterations_done = std::max(row.iterations_done, status.iterations_done());
+    }
+    std::erase_if(listed, [&filter](const store::StoredJob& row) {
+      return !filter.state.empty() && row.state != filter.state;
+    });
+    return store::job_list(listed, true);
+  }
   std::lock_guard lock(mutex_);
   for (auto it = jobs_.rbegin(); it != jobs_.rend() && listed.size() < filter.limit; ++it) {
     const Job& job = *it->second;

@@ -167,6 +167,16 @@ done
 "$netmc" jobs "${server[@]}" --limit 2
 "$netmc" status "$first" "${server[@]}" | grep -q "failed .*server restarted during iteration" ||
   { echo "FAIL: the killed realtime job is not failed by the restart"; "$netmc" status "${server[@]}"; exit 1; }
+# netmc watch of the failed job: exit 1 naming the failure, its kept iterations in the table and the JSON.
+watch_rc=0
+"$netmc" watch "$first" "${server[@]}" --quiet --json "$tmp/failed.json" >"$tmp/failed.txt" 2>"$tmp/failed.err" || watch_rc=$?
+kept=0
+[ ! -f "$tmp/failed.json" ] || kept=$(grep -c '"iteration":' "$tmp/failed.json" || true)
+restarted=$(sed -n 's/.*server restarted during iteration \([0-9]*\).*/\1/p' "$tmp/failed.err")
+if [ "$watch_rc" -eq 0 ] || [ -z "$restarted" ] || [ "$kept" -ne $((restarted - 1)) ] || ! grep -q "kept iterations" "$tmp/failed.err"; then
+  echo "FAIL: netmc watch of the failed job: exit $watch_rc, $kept iterations in its JSON:"; cat "$tmp/failed.err"; exit 1
+fi
+echo "netmc watch --json of the job failed during iteration $restarted: exit $watch_rc, its $kept kept iterations written"
 "$netmc" status "$second" "${server[@]}" | grep -q "^ *$second  *done  *2/2" ||
   { echo "FAIL: the realtime job queued behind it did not run"; "$netmc" status "${server[@]}"; exit 1; }
 echo "realtime: killed during iteration $(sed -n 's/.*server restarted during iteration \([0-9]*\).*/\1/p' <("$netmc" status "$first" "${server[@]}")); the queued job ran after the restart"

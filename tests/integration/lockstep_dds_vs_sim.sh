@@ -16,3 +16,12 @@ port=$(server_port 127.0.0.1)
 "$netmc" sim --json "$tmp/sim.json" "$@" >"$tmp/sim.txt"
 cat "$tmp/dds.txt"
 same_json "$tmp/sim.json" "$tmp/dds.json" "lockstep over DDS"
+# A study of one job: netmc watch of it (job 1 of this fresh server) prints netmc run's table
+# (the title line aside: run names the study, watch the job) and writes its JSON.
+if [ "$(grep -c '"label":' "$tmp/dds.json")" -eq 1 ]; then
+  "$netmc" watch 1 --server "127.0.0.1:$port" --quiet --json "$tmp/watch.json" >"$tmp/watch.txt"
+  diff <(tail -n +2 "$tmp/dds.txt") <(tail -n +2 "$tmp/watch.txt") ||
+    { echo "FAIL: netmc watch prints another table than netmc run"; exit 1; }
+  same_json "$tmp/dds.json" "$tmp/watch.json" "netmc watch --json"
+  echo "netmc watch 1: netmc run's table ($(wc -l <"$tmp/watch.txt") lines)"
+fi
