@@ -24,13 +24,18 @@ class VariableResolver {
   VariableResolver(const ModelDescription& description, std::string path)
       : description_(description), path_(std::move(path)) {}
 
+  // Where a user finds the names an FMU has: `mass=2.5` of another tool's FMU is a guess.
+  std::string no_variable_hint() const {
+    return " (netmc sim --plant-parameters fmu:" + printable_text(path_) + " lists the parameters it has)";
+  }
+
   [[noreturn]] void refuse(const std::string& why) const {
     throw std::invalid_argument("fmu " + printable_text(path_) + ": " + why);
   }
 
   const ScalarVariable& existing(const std::string& name, const std::string& option) const {
     const ScalarVariable* v = description_.find(name);
-    if (v == nullptr) refuse(option + ": the FMU has no variable " + quoted(name));
+    if (v == nullptr) refuse(option + ": the FMU has no variable " + quoted(name) + no_variable_hint());
     if (v->type != VariableType::real) {
       refuse(option + ": variable " + quoted(name) + " is " + std::string(variable_type_name(v->type)) +
              ", netmc needs a Real");
@@ -110,7 +115,7 @@ std::vector<ResolvedParameter> resolve_parameters(const FmuPlantOptions& options
     }
     const std::size_t dot = key.find('.');
     const auto axis = dot == std::string::npos ? std::nullopt : axis_of(std::string_view(key).substr(0, dot));
-    if (!axis) resolver.refuse(option + ": the FMU has no variable " + quoted(key));
+    if (!axis) resolver.refuse(option + ": the FMU has no variable " + quoted(key) + resolver.no_variable_hint());
     if (*axis >= axis_count) {
       resolver.refuse(option + ": names axis " + std::to_string(*axis) + " of a set of " + std::to_string(axis_count) +
                       " axes");

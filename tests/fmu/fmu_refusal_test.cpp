@@ -54,6 +54,7 @@ TEST(FmuRefusal, TheVariablesTheOptionsName) {
   EXPECT_MESSAGE(refusal(kAxis + ":x=1"), "option 'x': variable 'x' has causality output and variability continuous, "
                                           "expected a parameter");
   EXPECT_MESSAGE(refusal(kAxis + ":mass=1"), "option 'mass': the FMU has no variable 'mass'");
+  EXPECT_MESSAGE(refusal(kAxis + ":mass=1"), "(netmc sim --plant-parameters fmu:");  // where the names are
   EXPECT_MESSAGE(refusal(kAxis + ":position_start=u"), "option 'position_start=u': variable 'u'");
   EXPECT_MESSAGE(refusal(kAxis + ":position_start=u"), "cannot take a start value");
   EXPECT_MESSAGE(refusal(kAxis + ":velocity_start=nope"), "option 'velocity_start=nope': the FMU has no variable");

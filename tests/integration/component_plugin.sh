@@ -97,6 +97,19 @@ same_runs "$tmp/plugin-ilc.json" "$tmp/pid-ilc.json" "plugin:...,y.kd=4+ilccc ag
 sim --plant "plugin:$controller_plugin" --json "$tmp/plugin-plant.json" >/dev/null
 sim --plant seed001:coulomb_m_s2=0 --json "$tmp/seed001.json" >/dev/null
 same_runs "$tmp/plugin-plant.json" "$tmp/seed001.json" "--plant plugin: against seed001 without friction"
+# The guides' headline command (docs/extending.md, your-controller-your-plant.md, the example's
+# README), 10 iterations: it tracks, with the built-in pid's metrics at the same gains.
+"$netmc" sim -q --iterations 10 --controller "$pd+ilccc" --plant "plugin:$controller_plugin" \
+  --json "$tmp/guide.json" >/dev/null
+"$netmc" sim -q --iterations 10 --controller pid+ilccc --pid kp=540,ki=0,kd=8 --plant "plugin:$controller_plugin" \
+  --json "$tmp/guide-pid.json" >/dev/null
+same_runs "$tmp/guide.json" "$tmp/guide-pid.json" "the guides' plugin:...:kp=540,kd=8+ilccc on the plugin plant"
+python3 - "$tmp/guide.json" <<'PY'
+import json, sys
+m = json.load(open(sys.argv[1]))["runs"][0]["iterations"][-1]
+assert not m.get("diverged") and m["e_max_m"] < 20e-6, m
+print(f"  tracks: iteration 10 e_max {m['e_max_m'] * 1e6:.2f} um")
+PY
 # netmc sweep takes it as netmc sim does.
 "$netmc" sweep --controller "$pd" --delay-max 1ms,4ms --duration 2s --iterations 1 --csv "$tmp/sweep.csv" \
   >"$tmp/sweep.txt"
