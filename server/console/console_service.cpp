@@ -3,12 +3,15 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <set>
 #include <atomic>
 #include <charconv>
 #include <cmath>
 #include <string_view>
 
+#include "server/console/process_metrics.hpp"
 #include "server/console/prometheus_text.hpp"
+#include "server/drive/cia402.hpp"
 #include "server/job/job_builder.hpp"
 
 namespace netmc::console {
@@ -173,6 +176,9 @@ void ConsoleService::take_responses() {
       view.finished = response.finished();
       view.status.set_state(response.finished().state());
       view.status.set_error(response.finished().error());
+      // The status was taken before the last iteration ended; the end counts every one kept.
+      view.status.set_iterations_done(std::max(view.status.iterations_done(),
+                                               static_cast<std::uint32_t>(response.finished().result().iterations_size())));
       for (const auto& metrics : response.finished().result().iterations()) add_iteration(view, metrics);
       broadcast(json{{"type", "finished"}, {"job", job_id}, {"finished", proto_json(response.finished())}}.dump());
       watches_.erase(watch);
@@ -476,13 +482,28 @@ std::string ConsoleService::metrics_page() {
   PrometheusPage page;
   page.family("netmc_nodes_up", MetricType::gauge, "Axis nodes heard from within the expiry.");
   page.sample(static_cast<double>(nodes_.nodes_size()));
-  page.family("netmc_node_up", MetricType::gauge, "1 for each axis node the server lists.");
-  for (const auto& node : nodes_.nodes()) page.sample({{"node", node.node()}}, 1.0);
+  // A node that left reads 0 (its series does not vanish), for as long as this server runs.
+  std::set<std::string> listed;
+  for (const auto& node : nodes_.nodes()) {
+    listed.insert(node.node());
+    if (known_nodes_.size() < kMaxKnownNodes) known_nodes_.insert(node.node());
+  }
+  page.family("netmc_node_up", MetricType::gauge, "1 for each axis node the server lists, 0 for one that left.");
+  for (const auto& name : known_nodes_) page.sample({{"node", name}}, listed.contains(name) ? 1.0 : 0.0);
   page.family("netmc_axis_fault", MetricType::gauge, "1 if the axis's drive has a latched fault (netmc reset clears it).");
   for (const auto& node : nodes_.nodes()) {
     for (const auto& drive : node.drives()) {
-      page.sample({{"node", node.node()}, {"axis", drive.axis()}, {"state", drive.state()}},
-                  drive.fault_latched() ? 1.0 : 0.0);
+      page.sample({{"node", node.node()}, {"axis", drive.axis()}}, drive.fault_latched() ? 1.0 : 0.0);
+    }
+  }
+  // One series per CiA 402 state, 1 for the drive's: a state change moves a value, not a series.
+  page.family("netmc_axis_state", MetricType::gauge, "1 for the CiA 402 state the axis's drive reports, 0 for the others.");
+  for (const auto& node : nodes_.nodes()) {
+    for (const auto& drive : node.drives()) {
+      for (int s = 0; s <= static_cast<int>(drive::PowerState::fault); ++s) {
+        const std::string name = drive::power_state_name(static_cast<drive::PowerState>(s));
+        page.sample({{"node", node.node()}, {"axis", drive.axis()}, {"state", name}}, drive.state() == name ? 1.0 : 0.0);
+      }
     }
   }
   page.family("netmc_jobs", MetricType::gauge, "Jobs the server holds, by state (ended ones while in its history).");
@@ -520,6 +541,21 @@ std::string ConsoleService::metrics_page() {
           refused_origins_);
   counter("netmc_console_samples_dropped_total", "Cycles the live feed let go (its reader behind, or busy).",
           dropped_samples_);
+  page.family("netmc_build_info", MetricType::gauge, "1, with the server's version.");
+  page.sample({{"version", options_.version}}, 1.0);
+  if (const auto process = read_process_metrics()) {
+    page.family("process_cpu_seconds_total", MetricType::counter, "User and system CPU time of the server.");
+    page.sample(process->cpu_seconds);
+    const auto gauge = [&page](const char* name, const char* help, double value) {
+      page.family(name, MetricType::gauge, help);
+      page.sample(value);
+    };
+    gauge("process_resident_memory_bytes", "Resident memory of the server.", process->resident_bytes);
+    gauge("process_virtual_memory_bytes", "Virtual memory of the server.", process->virtual_bytes);
+    gauge("process_start_time_seconds", "When the server started (Unix time).", process->start_time_unix_s);
+    gauge("process_open_fds", "Open file descriptors.", process->open_fds);
+    gauge("process_max_fds", "The limit of open file descriptors.", process->max_fds);
+  }
   return page.text();
 }
 

@@ -21,6 +21,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -138,6 +139,9 @@ class ConsoleService {
   std::int64_t console_connections_ = 0;
   std::uint64_t dropped_messages_ = 0;
   std::uint64_t refused_origins_ = 0;
+  // Every node /metrics has listed (netmc_node_up reads 0 for one that left); bounded.
+  std::set<std::string> known_nodes_;
+  static constexpr std::size_t kMaxKnownNodes = 1024;
   std::uint64_t dropped_samples_ = 0;
   bool stopped_ = false;
 };

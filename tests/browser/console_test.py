@@ -333,6 +333,20 @@ def run(args, driver, state):
     wait_for('job %s: data-state done' % job, done, 90 + 30 * args.iterations, poll_s=0.5)
     log('job %s done' % job)
 
+    # A finished job counts every iteration it ran, before and after a reload.
+    expected = '%d / %d' % (args.iterations, args.iterations)
+
+    def progress():
+        return page.js("const r = document.querySelector('#jobs tr.job[data-job=\"' + CSS.escape(arguments[0]) + '\"]');"
+                       "return r ? r.cells[3].textContent.trim() : '';", job)
+    wait_for('job %s: progress %s' % (job, expected), lambda: progress() == expected, 5)
+    driver.refresh()
+    wait_for('job %s after a reload: progress %s' % (job, expected), lambda: progress() == expected, 15)
+    legend = page.js("const l = document.getElementById('learning-legend'); return l ? l.textContent : '';")
+    if 'e_max' not in legend or 'e_sum' not in legend:
+        raise StepFailed('the learning curve has no legend naming e_max and e_sum: %r' % legend)
+    log('job %s shows %s, after a reload too; learning curve legend: %s' % (job, expected, ' '.join(legend.split())))
+
     state['step'] = 'iteration table'
     if page.live_job() != job:
         page.click_in_job_row(job, 'td.id')

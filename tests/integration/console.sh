@@ -49,6 +49,15 @@ NETMC_TOKEN_FILE=$tmp/token "$netmc" watch "$id" --server "127.0.0.1:$port" --js
 curl -s -f "$url/metrics" >"$tmp/after.txt"
 promtool check metrics <"$tmp/after.txt"
 curl -s -f "$url/api/jobs/$id" >"$tmp/job.json"
+# The state every page gets (and a reload) counts the finished job's every iteration: 3 / 3.
+for _ in $(seq 30); do
+  curl -s -f "$url/api/state" >"$tmp/state.json"
+  done_count=$(python3 -c 'import json,sys; j=[j for j in json.load(open(sys.argv[1]))["jobs"] if str(j["job_id"]) == sys.argv[2]][0]; print(j["state"], j.get("iterations_done", 0), j["iterations_total"])' "$tmp/state.json" "$id")
+  [ "$done_count" = "done 3 3" ] && break
+  sleep 0.2
+done
+[ "$done_count" = "done 3 3" ] || { echo "FAIL: /api/state shows the finished job as '$done_count', not 'done 3 3'"; exit 1; }
+echo "/api/state after the job: done, 3 / 3 iterations"
 python3 - "$tmp/watch.json" "$tmp/job.json" "$tmp/after.txt" <<'PY'
 import json, sys
 watched = json.load(open(sys.argv[1]))["runs"][0]["iterations"]
@@ -93,3 +102,41 @@ code=$(curl -s -o /dev/null -w '%{http_code}' -H 'Origin: http://evil.example' -
 [[ $code == 403 ]] || { echo "FAIL: a cross-site POST got $code from a console without a token"; exit 1; }
 [[ $(curl -s -o /dev/null -w '%{http_code}' "$open_url/api/state") == 200 ]] || { echo "FAIL: the read-only console does not read"; exit 1; }
 echo "without --token-file: start and cancel 403 (read-only), a foreign Host 403, a cross-site POST 403; /api/state 200"
+
+# /metrics: the build, the process, one series per CiA 402 state, and a node that left reads 0.
+check_metrics() {  # FILE UP_X UP_Y
+  promtool check metrics <"$1"
+  python3 - "$@" <<'PY'
+import sys
+path, up_x, up_y = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
+samples = {}
+for line in open(path):
+    if line.startswith("#") or not line.strip():
+        continue
+    name, value = line.rsplit(" ", 1)
+    samples[name] = float(value)
+assert any(k.startswith("netmc_build_info{version=") and v == 1 for k, v in samples.items()), "no netmc_build_info"
+assert samples["process_resident_memory_bytes"] > 1e6, samples["process_resident_memory_bytes"]
+assert samples["process_open_fds"] >= 3 and samples["process_start_time_seconds"] > 1.7e9
+assert samples['netmc_node_up{node="con-x"}'] == up_x and samples['netmc_node_up{node="con-y"}'] == up_y
+assert not any(k.startswith("netmc_axis_fault{") and "state=" in k for k in samples), "a state label on netmc_axis_fault"
+for node, axis in [("con-x", "x"), ("con-y", "y")]:
+    states = {k: v for k, v in samples.items() if k.startswith(f'netmc_axis_state{{node="{node}",axis="{axis}"')}
+    if node == "con-x" and not up_x:
+        assert not states, states  # a node that left has no drive listed
+        continue
+    assert len(states) == 8 and sum(states.values()) == 1, states
+print(f"  {path.rsplit('/', 1)[-1]}: netmc_build_info, process_* (RSS {samples['process_resident_memory_bytes'] / 2**20:.1f} MiB), "
+      f"netmc_node_up con-x {up_x:g} con-y {up_y:g}, netmc_axis_state: 8 series an axis, one of them 1")
+PY
+}
+curl -s -f "$url/metrics" >"$tmp/metrics-both.txt"
+check_metrics "$tmp/metrics-both.txt" 1 1
+lab_stop x
+for _ in $(seq 60); do
+  curl -s -f "$url/metrics" >"$tmp/metrics-left.txt"
+  grep -q '^netmc_node_up{node="con-x"} 0$' "$tmp/metrics-left.txt" && break
+  sleep 0.2
+done
+check_metrics "$tmp/metrics-left.txt" 0 1
+echo "/metrics: promtool clean with both nodes and after con-x left (its netmc_node_up reads 0)"

@@ -601,7 +601,8 @@
       text += ', ' + (j.state || '?') + ', ' + num(j.iterations_done) + ' / ' + num(j.iterations_total) + ' iterations';
       if (j.error) text += ': ' + j.error;
     }
-    text += live.userSelected ? ' [selected]' : ' [newest running]';
+    // Followed automatically: the newest running job, which stays shown once it has ended.
+    text += live.userSelected ? ' [selected]' : j && j.state === 'running' ? ' [newest running]' : ' [last run]';
     setText(header, text);
     setAttr(header, 'data-job', live.job);
     setAttr(header, 'data-state', j ? j.state || '' : '');
@@ -650,11 +651,15 @@
     const samples = Array.isArray(msg.samples) ? msg.samples : [];
     if (live.currentIteration === null || iteration > live.currentIteration) {
       if (live.currentIteration !== null) {
-        // Break the time plots' lines between iterations.
-        if (live.lastX !== null) {
-          live.errorRows.push([live.lastX, null]);
-          if (live.commandWidth > 0) live.commandRows.push(gapRow(live.lastX, live.commandWidth));
-        }
+        // A new iteration: the time plots start again at its t = 0 (time within the iteration,
+        // as the feed gives it), so the contour, its peak and the plots are of one iteration.
+        live.samples = [];
+        live.errorRows = [];
+        live.commandRows = [];
+        live.lastRawT = null;
+        live.lastX = null;
+        live.lastDx = 0;
+        live.tOffset = 0;
       }
       live.currentIteration = iteration;
       live.peak = null;
