@@ -199,7 +199,9 @@ void JobService::fill_node_info(const NodeRecord& record, std::chrono::steady_cl
   info.set_participant(record.status.participant());
   std::string holders;
   for (const auto& hold : record.status.holds()) {
-    holders += (holders.empty() ? "" : ", ") + hold.server() + " (job " + std::to_string(hold.job_id()) + ", axis " +
+    // This server by a name, another by its participant's GUID prefix (all a node knows of it).
+    const std::string server = hold.server() == context_.identity() ? "this server" : hold.server();
+    holders += (holders.empty() ? "" : ", ") + server + " (job " + std::to_string(hold.job_id()) + ", axis " +
                hold.axis() + ")";
   }
   info.set_held_by(holders);

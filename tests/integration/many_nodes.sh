@@ -65,7 +65,8 @@ run_b=$!
 # While both run: each machine is held by its own server, and server B cannot take p0.
 held=""
 for _ in $(seq 100); do
-  held=$("$netmc" nodes --server "127.0.0.1:$portA" | grep -cE "held by ($serverA|$serverB)" || true)
+  # Server A names itself "this server" and B by its GUID prefix.
+  held=$("$netmc" nodes --server "127.0.0.1:$portA" | grep -cE "held by (this server|$serverB) " || true)
   [ "$held" -ge 4 ] && break
   sleep 0.05
 done
