@@ -3,10 +3,10 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <set>
 #include <atomic>
 #include <charconv>
 #include <cmath>
+#include <set>
 #include <string_view>
 
 #include "server/console/process_metrics.hpp"
@@ -406,10 +406,18 @@ HttpAnswer ConsoleService::cancel(std::uint64_t job_id, bool admin) {
   return json_answer(200, json{{"job", job_id}});
 }
 
-// A console whose server asks for no token changes nothing: anyone who reaches it could.
-constexpr const char* kReadOnly =
-    "this console is read-only: its server asks for no token (start netmc-server with --token-file to start and "
-    "cancel jobs here)";
+std::optional<bool> ConsoleService::change_permitted(const HttpRequest& request, const char* action,
+                                                     const std::function<void(HttpAnswer)>& answer) const {
+  // A console whose server asks for no token changes nothing: anyone who reaches it could.
+  if (!options_.authorize) {
+    answer(error_answer(403, "this console is read-only: its server asks for no token (start netmc-server with "
+                             "--token-file to start and cancel jobs here)"));
+    return std::nullopt;
+  }
+  const auto admin = authorized(request);
+  if (!admin) answer(error_answer(401, std::string(action) + " needs the server's token (Authorization: Bearer TOKEN)"));
+  return admin;
+}
 
 void ConsoleService::handle(const HttpRequest& request, std::function<void(HttpAnswer)> answer) {
   const std::string_view target = request.target;
@@ -434,15 +442,8 @@ void ConsoleService::handle(const HttpRequest& request, std::function<void(HttpA
   }
   if (target == "/api/jobs") {
     if (!only(post)) return;
-    if (!options_.authorize) {
-      answer(error_answer(403, kReadOnly));
-      return;
-    }
-    const auto admin = authorized(request);
-    if (!admin) {
-      answer(error_answer(401, "starting a job needs the server's token (Authorization: Bearer TOKEN)"));
-      return;
-    }
+    const auto admin = change_permitted(request, "starting a job", answer);
+    if (!admin) return;
     submit(request, *admin, std::move(answer));
     return;
   }
@@ -462,15 +463,8 @@ void ConsoleService::handle(const HttpRequest& request, std::function<void(HttpA
       return;
     }
     if (!only(post)) return;
-    if (!options_.authorize) {
-      answer(error_answer(403, kReadOnly));
-      return;
-    }
-    const auto admin = authorized(request);
-    if (!admin) {
-      answer(error_answer(401, "cancelling a job needs the server's token (Authorization: Bearer TOKEN)"));
-      return;
-    }
+    const auto admin = change_permitted(request, "cancelling a job", answer);
+    if (!admin) return;
     answer(cancel(*id, *admin));
     return;
   }

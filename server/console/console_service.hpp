@@ -120,6 +120,10 @@ class ConsoleService {
   HttpAnswer cancel(std::uint64_t job_id, bool admin);
   // The token's verdict: nullopt: refused (answer 401); else admin or not.
   std::optional<bool> authorized(const HttpRequest& request) const;
+  // authorized(), answering the refusal itself: 403 on a console without a token (read-only),
+  // 401 naming `action` ("starting a job") without a valid one.
+  std::optional<bool> change_permitted(const HttpRequest& request, const char* action,
+                                       const std::function<void(HttpAnswer)>& answer) const;
 
   boost::asio::io_context& io_;
   service::JobService& jobs_;

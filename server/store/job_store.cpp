@@ -102,6 +102,13 @@ constexpr const char* kMigrations[] = {
 };
 static_assert(std::size(kMigrations) == JobStore::kSchemaVersion);
 
+// The schema version a store was written with (PRAGMA user_version; 0 for a new file).
+int schema_version(sqlite3* db) {
+  Statement query(db, "PRAGMA user_version");
+  query.step();
+  return static_cast<int>(query.integer(0));
+}
+
 sqlite3* open_database(const std::filesystem::path& file, int flags) {
   sqlite3* db = nullptr;
   const int code = sqlite3_open_v2(file.c_str(), &db, flags | SQLITE_OPEN_FULLMUTEX, nullptr);
@@ -197,12 +204,7 @@ JobStore::JobStore(const std::filesystem::path& directory, Retention retention, 
       if (!journal.step() || journal.bytes(0) != "wal") throw StoreError("cannot use the WAL journal");
     }
     execute(writer_db_, "PRAGMA synchronous=FULL");
-    int version = 0;
-    {
-      Statement version_query(writer_db_, "PRAGMA user_version");
-      version_query.step();
-      version = static_cast<int>(version_query.integer(0));
-    }
+    const int version = schema_version(writer_db_);
     if (version > kSchemaVersion) {
       throw StoreError("schema version " + std::to_string(version) + " was written by a newer netmc (this one knows " +
                        std::to_string(kSchemaVersion) + "); use that netmc, or another --state-dir");
@@ -393,12 +395,7 @@ std::vector<StoredJob> JobStore::read(const std::filesystem::path& directory, co
   // taking no lock: a store that a server owns can still be read.
   sqlite3* db = open_database(file, SQLITE_OPEN_READONLY);
   try {
-    int version = 0;
-    {
-      Statement version_query(db, "PRAGMA user_version");
-      version_query.step();
-      version = static_cast<int>(version_query.integer(0));
-    }
+    const int version = schema_version(db);
     if (version != kSchemaVersion) {
       throw StoreError("schema version " + std::to_string(version) + ", this netmc reads " +
                        std::to_string(kSchemaVersion) + (version > kSchemaVersion ? ": use a newer netmc" : ""));
