@@ -24,7 +24,6 @@ class RequestOriginPolicy {
   // `origin`: nullopt when the request has none (curl, Prometheus, a same-origin GET).
   std::optional<std::string> refusal(std::optional<std::string_view> host, std::optional<std::string_view> origin) const;
 
-  const std::vector<std::string>& hosts() const { return hosts_; }
   // "localhost, 127.0.0.1, ::1" or "any host" (for the log).
   std::string describe() const;
 
