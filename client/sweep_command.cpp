@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include "client/figures.hpp"
@@ -15,6 +16,7 @@
 #include "client/study_runner.hpp"
 #include "client/sweep_grid.hpp"
 #include "client/sweep_output.hpp"
+#include "client/sweep_shard.hpp"
 #include "client/verbosity.hpp"
 
 namespace netmc::cli {
@@ -23,8 +25,10 @@ std::function<int()> add_sweep_command(CLI::App& app) {
   struct Flags {
     SweepAxes axes;
     std::string presets;
-    std::string csv_path, json_path, server, plot_dir;
+    std::string csv_path, json_path, server, plot_dir, shard;
     unsigned threads = 0;
+    std::vector<std::string> merge_parts;
+    std::string merge_output = "-";
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* sweep = app.add_subcommand(
@@ -65,6 +69,18 @@ std::function<int()> add_sweep_command(CLI::App& app) {
                     "Run the configurations one after another on this netmc-server (HOST:PORT) "
                     "instead of in-process")
       ->type_name("HOST:PORT");
+  sweep->add_option("--shard", flags->shard,
+                    "Run only the K-th of N interleaved parts of the grid (configurations K, K+N, ...) and "
+                    "write part files for netmc sweep merge: one per machine or job-array task")
+      ->type_name("K/N");
+  CLI::App* merge = sweep->add_subcommand(
+      "merge", "Join the part files of netmc sweep --shard K/N (all CSV or all JSON) into what the unsharded "
+               "sweep writes");
+  merge->add_option("parts", flags->merge_parts, "The part files, one per K of 1..N, in any order")
+      ->required()
+      ->type_name("PART...");
+  merge->add_option("-o,--output", flags->merge_output, "Where the joined file goes (default '-': standard output)")
+      ->type_name("FILE");
   sweep->footer(R"(Examples:
   # Paper 001's four controllers x 20 delay bounds (0.5..10 ms) x 5 seeds = 400 configurations
   netmc sweep --delay-max 0.5ms:10ms:20 --seeds 1..5 --iterations 10 --csv sweep.csv --json sweep.json
@@ -73,12 +89,25 @@ std::function<int()> add_sweep_command(CLI::App& app) {
       --delay constant:10ms --csv sweep.csv --plot figures
   # Two base studies with their own trajectories
   netmc sweep --preset seed001,seed001-ellipse --seeds 1..3 --csv sweep.csv
+  # The same grid in three parts (three machines, or a Slurm array), then joined
+  netmc sweep --delay-max 1ms:8ms:4 --seeds 1..3 --shard 2/3 --csv part-2.csv   # ... and 1/3, 3/3
+  netmc sweep merge part-1.csv part-2.csv part-3.csv -o sweep.csv
 
 Configurations run in grid order (preset, trajectory, run, delay, seed; the last varies
 fastest) and results are the same for any --threads. Files are written whole, and only after
 every configuration has finished. A run that becomes unstable stops at that iteration.)");
 
-  return [flags]() -> int {
+  return [flags, merge]() -> int {
+    if (merge->parsed()) {
+      if (!is_standard_output(flags->merge_output)) check_output_path(flags->merge_output, "--output");
+      std::vector<std::pair<std::string, std::string>> parts;
+      for (const auto& path : flags->merge_parts) parts.emplace_back(path, read_sweep_part(path));
+      write_output(flags->merge_output, merge_sweep_parts(parts));
+      if (!is_standard_output(flags->merge_output)) {
+        fmt::print("merged {} parts into {}\n", parts.size(), flags->merge_output);
+      }
+      return 0;
+    }
     flags->axes.presets = split_list(flags->presets);
     if (!flags->presets.empty() && flags->axes.presets.empty()) {
       throw std::invalid_argument("--preset: expected NAME[,NAME...]");
@@ -89,7 +118,21 @@ every configuration has finished. A run that becomes unstable stops at that iter
       throw std::invalid_argument("--csv, --json: only one of them can be '-' (standard output)");
     }
     if (!flags->plot_dir.empty()) require_gnuplot();
-    const auto grid = expand_sweep(flags->axes);
+    const auto whole_grid = expand_sweep(flags->axes);
+    std::optional<SweepShard> shard;
+    if (!flags->shard.empty()) {
+      shard = parse_sweep_shard(flags->shard, "--shard");
+      if (!flags->plot_dir.empty()) {
+        throw std::invalid_argument("--plot: a part has a part of the grid; draw the merged file with netmc plot --sweep");
+      }
+      if (flags->csv_path.empty() && flags->json_path.empty()) {
+        throw std::invalid_argument("--shard: a part is for netmc sweep merge; give --csv FILE or --json FILE");
+      }
+    }
+    std::vector<SweepConfiguration> grid;
+    for (const auto& configuration : whole_grid) {
+      if (!shard || shard->contains(configuration.number)) grid.push_back(configuration);
+    }
     StudyPlan plan;
     std::size_t total_iterations = 0;
     for (const auto& configuration : grid) {
@@ -124,8 +167,13 @@ every configuration has finished. A run that becomes unstable stops at that iter
 
     // Render everything before writing anything.
     const bool need_csv = !flags->csv_path.empty() || !flags->plot_dir.empty();
-    const std::string csv = need_csv ? sweep_csv(grid, outcomes) : std::string();
-    const std::string json = flags->json_path.empty() ? std::string() : sweep_json(grid, outcomes);
+    std::string csv = need_csv ? sweep_csv(grid, outcomes) : std::string();
+    std::string json = flags->json_path.empty() ? std::string() : sweep_json(grid, outcomes);
+    if (shard) {
+      const std::string fingerprint = sweep_grid_fingerprint(whole_grid);
+      if (!csv.empty()) csv = sweep_csv_part(*shard, fingerprint, whole_grid.size(), csv);
+      if (!json.empty()) json = sweep_json_part(*shard, fingerprint, whole_grid.size(), json);
+    }
     if (!flags->csv_path.empty()) write_output(flags->csv_path, csv);
     if (!flags->json_path.empty()) write_output(flags->json_path, json);
 
@@ -135,8 +183,9 @@ every configuration has finished. A run that becomes unstable stops at that iter
     print_sweep_summary(piped ? std::cerr : std::cout, grid, outcomes);
     std::size_t iterations_run = 0;
     for (const auto& outcome : outcomes) iterations_run += static_cast<std::size_t>(outcome.result.iterations_size());
-    fmt::print(report_file, "\n{} configurations, {} iterations run, in {:.2f} s ({})\n", grid.size(), iterations_run,
-               seconds, flags->server.empty() ? fmt::format("{} threads", threads) : "server " + flags->server);
+    fmt::print(report_file, "\n{} configurations{}, {} iterations run, in {:.2f} s ({})\n", grid.size(),
+               shard ? fmt::format(" (part {}/{} of {})", shard->index, shard->count, whole_grid.size()) : "",
+               iterations_run, seconds, flags->server.empty() ? fmt::format("{} threads", threads) : "server " + flags->server);
     for (const auto* path : {&flags->csv_path, &flags->json_path}) {
       if (!path->empty() && !is_standard_output(*path)) fmt::print(report_file, "wrote {}\n", *path);
     }

@@ -104,8 +104,12 @@ std::vector<std::string> sweep_csv_columns(std::size_t axes) {
 std::string sweep_csv(const std::vector<SweepConfiguration>& grid,
                       const std::vector<RunOutcome>& outcomes) {
   std::string csv;
-  // Per-axis columns for x, y, and z where a run has a third axis (empty in two-axis rows).
+  // Per-axis columns for x, y, and z where a run has a third axis (empty in two-axis rows). The
+  // grid's own jobs count too, so that a shard of it (sweep_shard.hpp) has the whole grid's columns.
   std::size_t axes = 2;
+  for (const auto& configuration : grid) {
+    if (job::is_spatial_job(configuration.job)) axes = 3;
+  }
   for (const auto& outcome : outcomes) {
     for (const auto& metrics : outcome.result.iterations()) {
       axes = std::max(axes, static_cast<std::size_t>(metrics.tracking_rms_m_size()));
