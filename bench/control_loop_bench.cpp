@@ -169,7 +169,7 @@ void BM_SimulatedIteration_Seed001_AdrcIlccc_PredictorPackets20ms(benchmark::Sta
 void seed001_study(benchmark::State& state, unsigned threads) {
   const netmc::cli::StudyPlan plan = netmc::cli::make_preset("seed001");
   for (auto _ : state) {
-    auto outcomes = netmc::cli::run_study_in_process(plan, false, threads);
+    auto outcomes = netmc::cli::run_study_in_process(plan, netmc::cli::TraceRecording::none, threads);
     benchmark::DoNotOptimize(outcomes);
   }
   state.counters["threads"] = static_cast<double>(threads);

@@ -241,23 +241,63 @@ std::string study_json(const std::vector<RunOutcome>& outcomes) {
   return job::to_json(study);
 }
 
-std::string trace_csv(const std::vector<sim::CycleTrace>& trace,
-                      const std::vector<control::EstimateName>& estimate_names) {
+std::vector<std::string> trace_column_names(std::size_t axes, const std::vector<control::EstimateName>& estimate_names) {
   // Columns per axis of the group, named by the contour's coordinates x, y (, z).
-  const std::size_t axes = trace.empty() ? 2 : static_cast<std::size_t>(trace.front().position_m.size());
+  std::vector<std::string> names{"time_s"};
   const auto columns = [&](const char* prefix, const char* suffix) {
-    std::string text;
     for (std::size_t i = 0; i < axes; ++i) {
-      text += i < 3 ? fmt::format(",{}{}{}", prefix, "xyz"[i], suffix) : fmt::format(",{}q{}{}", prefix, i + 1, suffix);
+      names.push_back(i < 3 ? fmt::format("{}{}{}", prefix, "xyz"[i], suffix) : fmt::format("{}q{}{}", prefix, i + 1, suffix));
     }
-    return text;
   };
-  std::string csv = "time_s" + columns("", "_ref_m") + columns("", "_m") + columns("", "_measured_m") +
-                    ",contour_error_m,contour_error_estimate_m" + columns("u", "") + columns("U", "") +
-                    ",ue,tau_x_s";
+  columns("", "_ref_m");
+  columns("", "_m");
+  columns("", "_measured_m");
+  names.insert(names.end(), {"contour_error_m", "contour_error_estimate_m"});
+  columns("u", "");
+  columns("U", "");
+  names.insert(names.end(), {"ue", "tau_x_s"});
   const std::size_t estimates = std::min(estimate_names.size(), control::kMaxControllerEstimates);
   for (std::size_t i = 0; i < estimates; ++i) {
-    csv += fmt::format(",{}[{}]", estimate_names[i].name, estimate_names[i].unit);
+    names.push_back(fmt::format("{}[{}]", estimate_names[i].name, estimate_names[i].unit));
+  }
+  return names;
+}
+
+std::vector<TraceColumn> trace_columns(const std::vector<sim::CycleTrace>& trace,
+                                       const std::vector<control::EstimateName>& estimate_names) {
+  const std::size_t axes = trace.empty() ? 2 : static_cast<std::size_t>(trace.front().position_m.size());
+  const auto names = trace_column_names(axes, estimate_names);
+  std::vector<TraceColumn> columns(names.size());
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    columns[c].name = names[c];
+    columns[c].values.reserve(trace.size());
+  }
+  for (const auto& row : trace) {
+    std::size_t c = 0;
+    columns[c++].values.push_back(row.time_s);
+    for (const auto* v : {&row.reference_m, &row.position_m, &row.measured_m}) {
+      for (std::size_t i = 0; i < axes; ++i) columns[c++].values.push_back((*v)[static_cast<Eigen::Index>(i)]);
+    }
+    columns[c++].values.push_back(row.contour_error_m);
+    columns[c++].values.push_back(row.contour_error_estimate_m);
+    for (const auto* v : {&row.axis_command, &row.command}) {
+      for (std::size_t i = 0; i < axes; ++i) columns[c++].values.push_back((*v)[static_cast<Eigen::Index>(i)]);
+    }
+    columns[c++].values.push_back(row.coupling_command);
+    columns[c++].values.push_back(row.tau_s);
+    for (std::size_t i = 0; c < columns.size(); ++i) columns[c++].values.push_back(row.estimates[i]);
+  }
+  return columns;
+}
+
+std::string trace_csv(const std::vector<sim::CycleTrace>& trace,
+                      const std::vector<control::EstimateName>& estimate_names) {
+  const std::size_t axes = trace.empty() ? 2 : static_cast<std::size_t>(trace.front().position_m.size());
+  const std::size_t estimates = std::min(estimate_names.size(), control::kMaxControllerEstimates);
+  std::string csv;
+  for (const auto& name : trace_column_names(axes, estimate_names)) {
+    if (!csv.empty()) csv += ',';
+    csv += name;
   }
   csv += '\n';
   const auto values = [&](const control::AxisVector& v, const char* format) {

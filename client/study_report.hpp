@@ -36,6 +36,13 @@ std::string study_json(const std::vector<RunOutcome>& outcomes);
 // then one column per controller estimate, named NAME[UNIT] (e.g. M1_hat[V/(m/s^2)]).
 std::string trace_csv(const std::vector<sim::CycleTrace>& trace,
                       const std::vector<control::EstimateName>& estimate_names = {});
+// The same columns as numbers (full precision), for the Python package's Study.trace.
+struct TraceColumn {
+  std::string name;
+  std::vector<double> values;
+};
+std::vector<TraceColumn> trace_columns(const std::vector<sim::CycleTrace>& trace,
+                                       const std::vector<control::EstimateName>& estimate_names = {});
 
 // Before a long run: throws std::invalid_argument("<flag>: ...") when `path` cannot be
 // created because its directory is missing or not writable.

@@ -11,9 +11,10 @@
 
 namespace netmc::cli {
 
-std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_traces,
+std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, TraceRecording traces,
                                              unsigned worker_threads,
                                              const std::function<void()>& on_iteration) {
+  const bool record_traces = traces != TraceRecording::none;
   // Every job is built (and so checked) before any runs.
   std::vector<std::optional<sim::ContourJob>> jobs(plan.jobs.size());
   for (std::size_t i = 0; i < plan.jobs.size(); ++i) {
@@ -37,6 +38,7 @@ std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, bool record_
             out.last_trace = record.trace;
             out.estimate_names = record.metrics.estimate_names;
           }
+          if (traces == TraceRecording::every_iteration) out.iteration_traces.push_back(record.trace);
           if (on_iteration) on_iteration();
         });
       } catch (...) {

@@ -38,7 +38,7 @@ SweepAxes tiny_axes() {
 std::vector<RunOutcome> run_grid(const std::vector<SweepConfiguration>& grid, unsigned threads) {
   StudyPlan plan;
   for (const auto& configuration : grid) plan.jobs.push_back(configuration.job);
-  return run_study_in_process(plan, false, threads);
+  return run_study_in_process(plan, TraceRecording::none, threads);
 }
 
 TEST(SweepGrid, RangeAndListAxes) {

@@ -39,7 +39,7 @@ std::vector<RunOutcome> run_seed001(const netmc::v1::DelayProfile* downlink, con
     if (uplink) *job.mutable_uplink()->mutable_delay() = *uplink;
     if (!compensator.empty()) job.mutable_compensation()->set_name(compensator);
   }
-  return run_study_in_process(plan, false, 2);
+  return run_study_in_process(plan, TraceRecording::none, 2);
 }
 
 // What building `spec` throws; "built" if it does not.
@@ -212,7 +212,7 @@ TEST(DelayCompensation, ThePredictorHoldsTheFirstIterationWhileTheLongDelaysAreS
     *job.mutable_downlink()->mutable_delay() = uniform(0.0003, 0.200);
     job.mutable_compensation()->set_name("predictor");
     plan.jobs = {job};
-    const RunOutcome run = run_study_in_process(plan, false, 1).at(0);
+    const RunOutcome run = run_study_in_process(plan, TraceRecording::none, 1).at(0);
     SCOPED_TRACE("seed " + std::to_string(seed));
     ASSERT_EQ(run.result.label(), "adrc");
     ASSERT_EQ(run.result.iterations_size(), 3);
@@ -234,7 +234,7 @@ RunOutcome run_adrc_ilccc(const netmc::v1::LossProfile* loss, const std::string&
   job.mutable_compensation()->set_name(compensator);
   if (horizon > 0) job.mutable_compensation()->set_horizon(horizon);
   plan.jobs = {job};
-  return run_study_in_process(plan, false, 1).at(0);
+  return run_study_in_process(plan, TraceRecording::none, 1).at(0);
 }
 
 TEST(DelayCompensation, PacketsCoverBurstsOfLostSetpointsAndCountWhatTheHorizonCovered) {

@@ -15,7 +15,7 @@ const netmc::v1::IterationMetrics& last(const RunOutcome& outcome) {
 
 TEST(Seed001Study, IlcccAndPidcccBeatAdrcAsInTable1) {
   const StudyPlan plan = make_preset("seed001");
-  const auto outcomes = run_study_in_process(plan, false, 2);
+  const auto outcomes = run_study_in_process(plan, TraceRecording::none, 2);
   ASSERT_EQ(outcomes.size(), 4u);
   const auto& adrc = last(outcomes[0]);
   const auto& pidccc = last(outcomes[1]);
@@ -42,7 +42,7 @@ TEST(Seed001Study, IlcLearnsAndStaysBoundedOver50Iterations) {
   StudyPlan plan = make_preset("seed001");
   plan.jobs = {plan.jobs.back()};  // ADRC+ILCCC with the zero-phase Q-filter
   plan.jobs[0].set_iterations(50);
-  const auto outcomes = run_study_in_process(plan, false, 1);
+  const auto outcomes = run_study_in_process(plan, TraceRecording::none, 1);
   const auto& iterations = outcomes[0].result.iterations();
   ASSERT_EQ(iterations.size(), 50);
   const double first = iterations[0].e_sum_m();
@@ -62,7 +62,7 @@ TEST(Seed001Study, PaperLawWithoutQFilterDivergesSlowly) {
   StudyPlan plan = make_preset("seed001");
   plan.jobs = {plan.jobs[2]};
   plan.jobs[0].set_iterations(100);
-  const auto outcomes = run_study_in_process(plan, false, 1);
+  const auto outcomes = run_study_in_process(plan, TraceRecording::none, 1);
   const auto& iterations = outcomes[0].result.iterations();
   double best = iterations[0].e_sum_m();
   for (const auto& m : iterations) best = std::min(best, m.e_sum_m());
