@@ -92,12 +92,22 @@ install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/make-lab-pki.sh DESTINATION ${CMA
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR}
   COMPONENT runtime)
 
-# Two .debs: `cpack -G DEB` in the build directory. netmc (the programs, units, examples): its
+# Three .debs: `cpack -G DEB` in the build directory. netmc (the programs, units, examples): its
 # dependencies are the Debian runtime packages of the programs' shared libraries, found by
 # dpkg-shlibdeps. netmc-dev (the pure libraries, headers, CMake package): needs Eigen's headers.
+# python3-netmc (the Python package, with NETMC_PYTHON): Debian's python3, numpy and pandas.
 set(CPACK_GENERATOR DEB)
 set(CPACK_DEB_COMPONENT_INSTALL ON)
 set(CPACK_COMPONENTS_ALL runtime dev)
+if(NETMC_PYTHON)
+  # python3-netmc: the Python package (python/) in Debian's dist-packages, for Debian's python3.
+  list(APPEND CPACK_COMPONENTS_ALL python)
+  set(CPACK_DEBIAN_PYTHON_PACKAGE_NAME python3-netmc)
+  set(CPACK_DEBIAN_PYTHON_PACKAGE_SECTION python)
+  set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS "python3 (>= 3.11), python3 (<< 3.12), python3-numpy, python3-pandas")
+  set(CPACK_DEBIAN_PYTHON_PACKAGE_SUGGESTS "python3-distributed, python3-matplotlib")
+  set(CPACK_COMPONENT_PYTHON_DESCRIPTION "netmc's studies from Python: import netmc (sim, sweep, Dask sweeps)")
+endif()
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME netmc)
 set(CPACK_DEBIAN_DEV_PACKAGE_NAME netmc-dev)
 set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "libeigen3-dev (>= 3.4)")

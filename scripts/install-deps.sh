@@ -13,19 +13,21 @@ build=(build-essential cmake ninja-build pkg-config dpkg-dev file
   libfastrtps-dev libfastcdr-dev fastddsgen
   libboost-dev libboost-system-dev libssl-dev
   libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
-  libmodbus-dev libzip-dev libtinyxml2-dev libsqlite3-dev)
+  libmodbus-dev libzip-dev libtinyxml2-dev libsqlite3-dev
+  pybind11-dev python3-dev python3-numpy python3-pandas)
 # What the tests and benchmarks use besides: gnuplot for figures, namespaces and nftables for
 # test hosts, libfaketime for a wall-clock step seen by one process only, rt-tests for the
 # machine's latency, openssl for DDS Security certificates, systemd for checking the units,
 # podman with compose for the container test, and for the console: Debian's dygraphs (the page's
 # plots), a headless browser driven by selenium, a WebSocket client and promtool (prometheus) for
-# /metrics.
+# /metrics; Dask (python3-distributed) for the Python package's sweeps on a cluster.
 tests=(gnuplot-nox
   iproute2 nftables util-linux fastdds-tools rt-tests openssl systemd sqlite3 libfaketime
   podman podman-compose runc debootstrap golang-github-containernetworking-plugin-dnsname dnsmasq-base
   docker-compose uidmap
   libgtest-dev libgmock-dev libbenchmark-dev
-  libjs-dygraphs chromium chromium-driver python3-selenium python3-websocket prometheus curl)
+  libjs-dygraphs chromium chromium-driver python3-selenium python3-websocket prometheus curl
+  python3-distributed)
 apt-get update
 if [ "${1:-}" = "--build-only" ]; then
   apt-get install -y --no-install-recommends "${build[@]}"

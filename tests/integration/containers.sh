@@ -97,6 +97,18 @@ podman run --rm localhost/netmc:test netmc --version
 podman run --rm localhost/netmc:test sim --quiet --controller adrc --iterations 1 | grep -q "^adrc " ||
   { echo "FAIL: netmc sim does not run in the image"; exit 1; }
 echo "the .deb installed on a clean Debian 12 runs netmc sim"
+# python3-netmc beside netmc on the same clean base: it installs (Debian's numpy and pandas come
+# with it) and imports, and its study is the CLI's.
+if ls "$tmp/package"/python3-netmc_*.deb >/dev/null 2>&1; then
+  podman run --rm --network host -v "$tmp/package:/packages:ro" localhost/netmc-test-base:12 bash -c '
+    apt-get update >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
+      /packages/netmc_*.deb /packages/python3-netmc_*.deb >/dev/null &&
+    python3 -c "import netmc; s = netmc.sim(controller=\"adrc\", iterations=1); print(netmc.__version__, s.labels, len(s.trace(\"adrc\")[\"time_s\"]))" &&
+    netmc sim -q --controller adrc --iterations 1 --json /tmp/cli.json >/dev/null &&
+    python3 -c "import netmc; assert netmc.sim(controller=\"adrc\", iterations=1).to_json() == open(\"/tmp/cli.json\").read()"' \
+    >"$tmp/python.log" 2>&1 || { echo "FAIL: python3-netmc did not install or import on a clean Debian 12"; cat "$tmp/python.log"; exit 1; }
+  echo "python3-netmc installed beside netmc on a clean Debian 12: $(tail -n 1 "$tmp/python.log"); netmc.sim() JSON = netmc sim --json"
+fi
 
 # The lab: server and two axis nodes, then the client service.
 port=$(( 17300 + RANDOM % 1000 ))
