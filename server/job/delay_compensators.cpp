@@ -9,6 +9,7 @@
 #include "plant/nominal_axis_model.hpp"
 #include "plant/plant_catalog.hpp"
 #include "server/job/job_builder.hpp"
+#include "server/job/quantity_text.hpp"
 
 namespace netmc::job {
 namespace {
@@ -28,15 +29,17 @@ const std::vector<DelayCompensatorDescriptor>& delay_compensators() {
   static const std::vector<DelayCompensatorDescriptor> compensators = {
       {"none", "none", "no compensation: the controller sees the newest feedback and the reference at t_k", "-",
        "paper 001 (the papers' loop)"},
-      {"predictor", "predictor",
+      {"predictor", "predictor[:playout=D|bound]",
        "each axis's state predicted from its newest time-stamped feedback over that feedback's age plus the "
-       "setpoint's planned travel (the longest downlink delay the axes reported lately; an axis holds an earlier "
+       "setpoint's planned travel (the longest downlink delay the axes reported lately, and at least the playout "
+       "delay D if given: bound is the upper bound of the job's own delay profile; an axis holds an earlier "
        "arrival until then), with the commands already sent; the controller (axis law and contour compensator "
        "alike) acts on the predicted positions and the reference at the instant its command will act",
        fmt::format("the plant's nominal model x'' = a x' + b u - c tanh(x'/v_s) + d where netmc knows it ({}), else "
                    "the axis law's own (ADRC's observer model x'' = b0 u + d); d estimated, held over the prediction",
                    fmt::join(plants_with_nominal_models(), ", ")),
-       "Smith 1957; Yi, An and Choi 2017; the filtered Smith predictor (arXiv 2506.23421)"},
+       "Smith 1957; Yi, An and Choi 2017; the filtered Smith predictor (arXiv 2506.23421); playout: Luck and Ray "
+       "1990"},
       {"packets", "packets[:horizon=N]",
        fmt::format("packetized predictive control: each setpoint carries the commands for its cycle and the next N-1 "
                    "(default {}, at most {}), computed by a copy of the controller run ahead on the positions the "
@@ -47,7 +50,7 @@ const std::vector<DelayCompensatorDescriptor>& delay_compensators() {
                    kDefaultHorizon, sim::DelayCompensation::kMaxHorizon),
        "as predictor (the laws that can be copied: contouring controllers of axis laws and compensators)",
        "Bemporad 1998; Quevedo and Nešić 2011; Beger, Lin, Stanojevic and Hirche (arXiv 2512.11492)"},
-      {"predictor+packets", "predictor+packets[:horizon=N]",
+      {"predictor+packets", "predictor+packets[:horizon=N,playout=D|bound]",
        "both: the first command planned over the measured delay as predictor does (on a grid of whole periods), "
        "the next N-1 as packets computes them",
        "as predictor", "as predictor and packets"},
@@ -92,26 +95,52 @@ std::optional<netmc::v1::CompensationSpec> parse_compensation(std::string_view t
   netmc::v1::CompensationSpec spec;
   spec.set_name(std::string(name));
   if (colon == std::string_view::npos) return spec;
-  const std::string_view option = text.substr(colon + 1);
-  if (!takes_horizon(name)) {
-    throw std::invalid_argument(fmt::format("{}: {} takes no options, got '{}'", flag, name, option.substr(0, 80)));
+  const std::string_view options = text.substr(colon + 1);
+  std::vector<std::string> allowed;
+  if (takes_horizon(name)) allowed.push_back("horizon");
+  if (takes_playout(name)) allowed.push_back("playout");
+  if (allowed.empty()) {
+    throw std::invalid_argument(fmt::format("{}: {} takes no options, got '{}'", flag, name, options.substr(0, 80)));
   }
-  constexpr std::string_view key = "horizon=";
-  const std::string_view value = option.starts_with(key) ? option.substr(key.size()) : std::string_view{};
-  unsigned horizon = 0;
-  const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), horizon);
-  if (!option.starts_with(key) || value.empty() || error != std::errc{} || end != value.data() + value.size() ||
-      horizon < 2 || horizon > sim::DelayCompensation::kMaxHorizon) {
-    throw std::invalid_argument(fmt::format("{}: expected {}:horizon=N with N an integer of 2 to {}, got '{}'", flag,
-                                            name, sim::DelayCompensation::kMaxHorizon, text.substr(0, 80)));
+  const auto keys = parse_keys(options, flag, allowed);
+  if (const auto found = keys.find("horizon"); found != keys.end()) {
+    const std::string_view value = found->second;
+    unsigned horizon = 0;
+    const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), horizon);
+    if (value.empty() || error != std::errc{} || end != value.data() + value.size() || horizon < 2 ||
+        horizon > sim::DelayCompensation::kMaxHorizon) {
+      throw std::invalid_argument(fmt::format("{}: expected {}:horizon=N with N an integer of 2 to {}, got '{}'", flag,
+                                              name, sim::DelayCompensation::kMaxHorizon, text.substr(0, 80)));
+    }
+    spec.set_horizon(horizon);
   }
-  spec.set_horizon(horizon);
+  if (const auto found = keys.find("playout"); found != keys.end()) {
+    if (found->second == "bound") {
+      spec.set_playout_at_delay_bound(true);
+    } else {
+      const double playout_s = parse_quantity(found->second, Quantity::time, fmt::format("{} playout", flag));
+      if (!(playout_s > 0.0 && playout_s <= sim::DelayCompensation::kMaxPlayoutS)) {
+        throw std::invalid_argument(fmt::format("{}: expected {}:playout=DURATION (above 0, at most {} s) or "
+                                                "playout=bound, got '{}'",
+                                                flag, name, sim::DelayCompensation::kMaxPlayoutS, found->second.substr(0, 80)));
+      }
+      spec.set_playout_s(playout_s);
+    }
+  }
   return spec;
 }
 
+bool takes_playout(std::string_view name) { return name == "predictor" || name == "predictor+packets"; }
+
 std::string compensation_text(const netmc::v1::CompensationSpec& spec) {
-  if (spec.horizon() == 0) return spec.name();
-  return fmt::format("{}:horizon={}", spec.name(), spec.horizon());
+  std::vector<std::string> options;
+  if (spec.horizon() != 0) options.push_back(fmt::format("horizon={}", spec.horizon()));
+  if (spec.playout_at_delay_bound()) {
+    options.push_back("playout=bound");
+  } else if (spec.playout_s() != 0.0) {
+    options.push_back(fmt::format("playout={}s", spec.playout_s()));
+  }
+  return options.empty() ? spec.name() : fmt::format("{}:{}", spec.name(), fmt::join(options, ","));
 }
 
 std::optional<sim::DelayCompensation> build_compensation(const netmc::v1::JobSpec& spec,
@@ -132,6 +161,27 @@ std::optional<sim::DelayCompensation> build_compensation(const netmc::v1::JobSpe
   } else if (spec.compensation().horizon() != 0) {
     throw std::invalid_argument(fmt::format("compensation.horizon: {} takes none (packets and predictor+packets do), got {}",
                                             name, spec.compensation().horizon()));
+  }
+  const auto& playout = spec.compensation();
+  if (playout.playout_at_delay_bound() || playout.playout_s() != 0.0) {
+    if (!takes_playout(name)) {
+      throw std::invalid_argument(fmt::format(
+          "compensation.playout_s: {} plans no delay (predictor and predictor+packets do)", name));
+    }
+    if (playout.playout_at_delay_bound()) {
+      const auto bound = delay_profile_bound_s(spec.downlink().delay());
+      if (!bound) {
+        throw std::invalid_argument(
+            "compensation.playout_at_delay_bound: the downlink delay has no upper bound netmc knows (a trace, an "
+            "untruncated normal or pareto delay); give playout=DURATION");
+      }
+      compensation.playout_s = *bound;
+    } else if (!(playout.playout_s() > 0.0 && playout.playout_s() <= sim::DelayCompensation::kMaxPlayoutS)) {
+      throw std::invalid_argument(fmt::format("compensation.playout_s: expected above 0 and at most {} s, got {}",
+                                              sim::DelayCompensation::kMaxPlayoutS, playout.playout_s()));
+    } else {
+      compensation.playout_s = playout.playout_s();
+    }
   }
   const auto& registry = ControllerRegistry::global();
   const auto law_models = registry.prediction_models(spec.controller(), reference, axis_names, spec.sample_period_s());

@@ -32,13 +32,15 @@ const std::vector<DelayCompensatorDescriptor>& delay_compensators();
 std::string delay_compensator_syntax();
 // A Markdown table of the compensators (netmc sim --list-compensators).
 std::string delay_compensators_markdown_table();
-// --compensate's text (NAME or NAME:horizon=N) as a spec: unset for "none". Throws
+// --compensate's text (NAME or NAME:horizon=N,playout=DURATION|bound) as a spec: unset for "none". Throws
 // std::invalid_argument naming `flag`.
 std::optional<netmc::v1::CompensationSpec> parse_compensation(std::string_view text, std::string_view flag);
 // The spec as --compensate writes it ("predictor+packets:horizon=8"), for results and labels.
 std::string compensation_text(const netmc::v1::CompensationSpec& spec);
 // Whether the compensator carries a horizon of commands (packetized predictive control).
 bool takes_horizon(std::string_view name);
+// Whether it plans a delay, and so takes a playout delay ("playout=DURATION|bound").
+bool takes_playout(std::string_view name);
 // The compensation of a job (unset when the spec names none): the compensator checked and the
 // prediction model of every axis taken from the controller's law. Throws std::invalid_argument
 // ("compensation: ...") for an unknown compensator or a law that cannot predict.

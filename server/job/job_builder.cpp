@@ -756,4 +756,21 @@ std::string to_json(const google::protobuf::Message& message) {
   return json;
 }
 
+std::optional<double> delay_profile_bound_s(const netmc::v1::DelayProfile& d) {
+  using netmc::v1::DelayProfile;
+  switch (d.kind_case()) {
+    case DelayProfile::KIND_NOT_SET:
+    case DelayProfile::kNone: return 0.0;
+    case DelayProfile::kConstantS: return d.constant_s();
+    case DelayProfile::kUniform: return d.uniform().max_s();
+    case DelayProfile::kNormal: return d.normal().max_s() > 0.0 ? std::optional<double>(d.normal().max_s()) : std::nullopt;
+    case DelayProfile::kPareto: return d.pareto().max_s() > 0.0 ? std::optional<double>(d.pareto().max_s()) : std::nullopt;
+    case DelayProfile::kMarkov: return std::max(d.markov().good().max_s(), d.markov().bad().max_s());
+    case DelayProfile::kTrace:
+      if (d.trace().delays_s().empty()) return std::nullopt;
+      return *std::max_element(d.trace().delays_s().begin(), d.trace().delays_s().end());
+  }
+  return std::nullopt;
+}
+
 }  // namespace netmc::job

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,9 @@ void reject_file_references(const netmc::v1::JobSpec& spec);
 void inline_delay_traces(netmc::v1::JobSpec& spec);
 // A three-axis contour (trajectory.spatial_circle, thesis ch. 6).
 bool is_spatial_job(const netmc::v1::JobSpec& spec);
+// The longest delay a profile ever draws (a truncated normal or pareto's max, a trace's longest);
+// nullopt for a profile without one (untruncated normal or pareto, a trace not yet loaded).
+std::optional<double> delay_profile_bound_s(const netmc::v1::DelayProfile& delay);
 // A single-axis tracking job (trajectory.multi_sine, thesis ch. 5).
 bool is_single_axis_job(const netmc::v1::JobSpec& spec);
 // The axes the job's group drives: 1, 2 or 3.

@@ -30,7 +30,12 @@ ContourServer::ContourServer(const ContourJob& job)
 }
 
 double ContourServer::playout_delay_s() const {
-  return downlink_delays_s_.empty() ? 0.0 : *std::max_element(downlink_delays_s_.begin(), downlink_delays_s_.end());
+  // A configured playout delay holds from the first cycle, before any report has come back
+  // (Luck and Ray's buffer); the axes' reports plan longer when the link is slower than it.
+  const double configured = job_.compensation ? job_.compensation->playout_s : 0.0;
+  return downlink_delays_s_.empty()
+             ? configured
+             : std::max(configured, *std::max_element(downlink_delays_s_.begin(), downlink_delays_s_.end()));
 }
 
 control::AxisVector ContourServer::begin_iteration(std::size_t iteration) {

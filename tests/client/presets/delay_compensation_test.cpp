@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -126,12 +127,19 @@ TEST(DelayCompensation, BadCompensatorsAreRefusedNamingTheFieldOrTheLaw) {
     FAIL() << "an unknown compensator was taken";
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what())
-                  .find("--compensate: expected none | predictor | packets[:horizon=N] | "
-                        "predictor+packets[:horizon=N], got 'smith'"),
+                  .find("--compensate: expected none | predictor[:playout=D|bound] | packets[:horizon=N] | "
+                        "predictor+packets[:horizon=N,playout=D|bound], got 'smith'"),
               std::string::npos)
         << error.what();
   }
   EXPECT_FALSE(job::parse_compensation("none", "--compensate").has_value());
+  // Options in any order; the text is the flag's again (durations in seconds).
+  const auto both = job::parse_compensation("predictor+packets:playout=150ms,horizon=8", "--compensate");
+  EXPECT_EQ(both->playout_s(), 0.15);
+  EXPECT_EQ(job::compensation_text(*both), "predictor+packets:horizon=8,playout=0.15s");
+  EXPECT_EQ(job::compensation_text(*job::parse_compensation(job::compensation_text(*both), "--compensate")),
+            job::compensation_text(*both));
+  EXPECT_TRUE(job::parse_compensation("predictor:playout=bound", "--compensate")->playout_at_delay_bound());
   // A horizon: 2 to 64 commands, for packets only.
   EXPECT_EQ(job::parse_compensation("predictor+packets:horizon=8", "--compensate")->horizon(), 8u);
   EXPECT_EQ(job::parse_compensation("packets", "--compensate")->horizon(), 0u);  // the default, 8
@@ -140,9 +148,15 @@ TEST(DelayCompensation, BadCompensatorsAreRefusedNamingTheFieldOrTheLaw) {
       {"packets:horizon=65", "--compensate: expected packets:horizon=N with N an integer of 2 to 64, got 'packets:horizon=65'"},
       {"predictor+packets:horizon=1", "--compensate: expected predictor+packets:horizon=N with N an integer of 2 to 64, got 'predictor+packets:horizon=1'"},
       {"packets:horizon=8x", "--compensate: expected packets:horizon=N with N an integer of 2 to 64, got 'packets:horizon=8x'"},
-      {"packets:depth=8", "--compensate: expected packets:horizon=N with N an integer of 2 to 64, got 'packets:depth=8'"},
-      {"predictor:horizon=8", "--compensate: predictor takes no options, got 'horizon=8'"},
+      {"packets:depth=8", "--compensate: unknown key 'depth' (expected one of: horizon)"},
+      {"predictor:horizon=8", "--compensate: unknown key 'horizon' (expected one of: playout)"},
       {"none:horizon=8", "--compensate: none takes no options, got 'horizon=8'"},
+      // A playout delay: above 0 and at most a minute, or the delay profile's bound; predictors only.
+      {"packets:playout=bound", "--compensate: unknown key 'playout' (expected one of: horizon)"},
+      {"predictor:playout=0", "--compensate: expected predictor:playout=DURATION (above 0, at most 60 s) or playout=bound, got '0'"},
+      {"predictor:playout=61s", "--compensate: expected predictor:playout=DURATION (above 0, at most 60 s) or playout=bound, got '61s'"},
+      {"predictor:playout=nan", "--compensate playout: expected a duration such as 5ms, 0.005 or 800us, got 'nan'"},
+      {"predictor:playout=1s,playout=bound", "--compensate: key 'playout' given twice"},
   };
   for (const auto& [flag, message] : bad_flags) {
     try {
@@ -186,6 +200,23 @@ TEST(DelayCompensation, BadCompensatorsAreRefusedNamingTheFieldOrTheLaw) {
   spec.mutable_compensation()->set_name("packets");
   spec.mutable_compensation()->set_horizon(100);
   EXPECT_EQ(build_error(spec), "compensation.horizon: expected 2 to 64 commands, got 100");
+  // ... and its playout delay: a predictor's, finite, above 0, at most a minute; "bound" needs one.
+  spec.mutable_compensation()->set_horizon(8);
+  spec.mutable_compensation()->set_playout_s(0.1);
+  EXPECT_EQ(build_error(spec), "compensation.playout_s: packets plans no delay (predictor and predictor+packets do)");
+  spec.mutable_compensation()->set_name("predictor+packets");
+  for (const double bad : {-1.0, 61.0, std::numeric_limits<double>::quiet_NaN()}) {
+    spec.mutable_compensation()->set_playout_s(bad);
+    EXPECT_EQ(build_error(spec).rfind("compensation.playout_s: expected above 0 and at most 60 s, got ", 0), 0u) << bad;
+  }
+  spec.mutable_compensation()->set_playout_s(0.0);
+  spec.mutable_compensation()->set_playout_at_delay_bound(true);
+  spec.mutable_downlink()->mutable_delay()->mutable_pareto()->set_scale_s(0.01);
+  spec.mutable_downlink()->mutable_delay()->mutable_pareto()->set_shape(2.0);
+  EXPECT_EQ(build_error(spec).rfind("compensation.playout_at_delay_bound: the downlink delay has no upper bound", 0), 0u);
+  spec.mutable_downlink()->mutable_delay()->mutable_pareto()->set_max_s(0.2);
+  EXPECT_EQ(build_error(spec), "built");
+  spec.mutable_compensation()->clear_playout_at_delay_bound();
   // Packets run the law ahead on a copy: a law that cannot be copied is refused, named.
   StudyPlan gtcf = make_preset("seed001");
   netmc::v1::JobSpec task_space = gtcf.jobs.front();
@@ -221,6 +252,42 @@ TEST(DelayCompensation, ThePredictorHoldsTheFirstIterationWhileTheLongDelaysAreS
     // from iteration 2 the plan holds from the first cycle.
     EXPECT_LE(last(run).e_max_m(), 2.0 * last(reference[0]).e_max_m());
   }
+}
+
+TEST(DelayCompensation, APlayoutDelayAtTheBoundMakesAJitteryDelayTheConstantOneFromTheFirstCycle) {
+  // U(0.3, 175) ms: the predictor alone plans only what has come back, and adrc diverges in
+  // iteration 1 (seed 1, at 0.43 s). With every command planned to act 175 ms after it is sent
+  // (Luck and Ray's buffer; "playout=bound" takes the profile's bound) each one waits at the axis
+  // for its instant, so the loop is the one under a constant 175 ms delay (the same plan under the
+  // constant delay, where every command arrives at its instant).
+  const auto run = [](const netmc::v1::DelayProfile& delay, const char* playout) {
+    StudyPlan plan = make_preset("seed001");
+    for (auto& job : plan.jobs) {
+      job.set_iterations(3);
+      *job.mutable_downlink()->mutable_delay() = delay;
+      job.mutable_compensation()->set_name("predictor");
+      if (std::string(playout) == "bound") job.mutable_compensation()->set_playout_at_delay_bound(true);
+    }
+    plan.jobs = {plan.jobs.at(0), plan.jobs.at(2)};  // adrc, adrc+ilccc
+    return run_study_in_process(plan, TraceRecording::none, 2);
+  };
+  const auto measured_only = run(uniform(0.0003, 0.175), "");
+  EXPECT_TRUE(measured_only[0].result.iterations(0).diverged());
+  const auto jittery = run(uniform(0.0003, 0.175), "bound");
+  const auto constant_delay = run(constant(0.175), "bound");
+  for (std::size_t r = 0; r < jittery.size(); ++r) {
+    SCOPED_TRACE(jittery[r].result.label());
+    ASSERT_EQ(jittery[r].result.iterations_size(), 3);
+    ASSERT_EQ(constant_delay[r].result.iterations_size(), 3);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_FALSE(jittery[r].result.iterations(i).diverged());
+      // Equal but for rounding: a reported travel of (t + 0.175) - t may differ from 0.175 in its last bit.
+      const double e_max = constant_delay[r].result.iterations(i).e_max_m();
+      EXPECT_NEAR(jittery[r].result.iterations(i).e_max_m(), e_max, 1e-6 * e_max);
+      EXPECT_NEAR(jittery[r].result.iterations(i).tau_mean_s(), 0.175, 1e-9);
+    }
+  }
+  EXPECT_EQ(jittery[0].result.compensation(), "predictor:playout=bound");
 }
 
 // Paper 001's adrc+ilccc (the preset's third run), 10 iterations, U(10, 20) ms on the setpoint
