@@ -20,14 +20,16 @@ build=(build-essential cmake ninja-build pkg-config dpkg-dev file
 # machine's latency, openssl for DDS Security certificates, systemd for checking the units,
 # podman with compose for the container test, and for the console: Debian's dygraphs (the page's
 # plots), a headless browser driven by selenium, a WebSocket client and promtool (prometheus) for
-# /metrics; Dask (python3-distributed) for the Python package's sweeps on a cluster.
+# /metrics; Dask (python3-distributed) for the Python package's sweeps on a cluster, nbclient, ipykernel
+# and matplotlib for its notebook (examples/notebooks), Slurm (slurm-wlm, munge) for a job array of
+# sweep parts.
 tests=(gnuplot-nox
   iproute2 nftables util-linux fastdds-tools rt-tests openssl systemd sqlite3 libfaketime
   podman podman-compose runc debootstrap golang-github-containernetworking-plugin-dnsname dnsmasq-base
   docker-compose uidmap
   libgtest-dev libgmock-dev libbenchmark-dev
   libjs-dygraphs chromium chromium-driver python3-selenium python3-websocket prometheus curl
-  python3-distributed)
+  python3-distributed python3-nbclient python3-ipykernel python3-matplotlib slurm-wlm munge)
 apt-get update
 if [ "${1:-}" = "--build-only" ]; then
   apt-get install -y --no-install-recommends "${build[@]}"

@@ -240,7 +240,9 @@ def sweep(*, client: Any = None, tasks: Optional[int] = None, **grid: Any):
     """A pandas DataFrame of the rows `netmc sweep --csv` writes: one per configuration and iteration."""
     import pandas
 
-    return pandas.read_csv(io.StringIO(sweep_csv(client=client, tasks=tasks, **grid)))
+    # round_trip: every number reads back as the double the CSV was written from (pandas' default
+    # parser may differ in the last bit).
+    return pandas.read_csv(io.StringIO(sweep_csv(client=client, tasks=tasks, **grid)), float_precision="round_trip")
 
 
 sim.__doc__ = f"""Runs a study in-process, as `netmc sim` does, and returns a Study.
