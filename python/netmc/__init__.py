@@ -21,6 +21,8 @@ import json as _json
 import math
 import numbers
 import os
+import shutil
+import subprocess
 import tempfile
 import uuid
 from typing import Any, Dict, List, Optional
@@ -28,7 +30,7 @@ from typing import Any, Dict, List, Optional
 from . import _core
 
 __version__ = _core.version
-__all__ = ["sim", "sweep", "sweep_csv", "Study", "set_log_level", "__version__"]
+__all__ = ["sim", "sweep", "sweep_csv", "Study", "Client", "ServerError", "set_log_level", "__version__"]
 
 _FLAGS = {command: {flag["name"]: flag for flag in _core.command_flags(command)} for command in ("sim", "sweep")}
 
@@ -126,6 +128,15 @@ class Study:
         self._traces = {run["label"]: run["traces"] for run in raw["runs"]}
         self.labels: List[str] = [run["label"] for run in raw["runs"]]
 
+    @classmethod
+    def from_json(cls, text: str) -> "Study":
+        """A Study of a results file's text (netmc sim, run or watch --json); it has no traces."""
+        results = _json.loads(text)
+        if not isinstance(results, dict) or not isinstance(results.get("runs"), list):
+            raise ValueError("results: expected the JSON of netmc sim --json ({\"runs\": [...]})")
+        return cls({"json": text, "table": "", "runs": [{"label": run.get("label", ""), "traces": []}
+                                                       for run in results["runs"]]})
+
     def to_json(self) -> str:
         """Exactly what `netmc sim --json` writes for the same flags."""
         return self._json
@@ -151,6 +162,8 @@ class Study:
         if label not in self._traces:
             raise KeyError(f"label: no run '{label}' in this study (runs: {', '.join(self.labels)})")
         traces = self._traces[label]
+        if not traces:
+            raise LookupError(f"run '{label}': this study has no traces (a server's job, or a results file)")
         if iteration is None:
             iteration = len(traces)
         if isinstance(iteration, bool) or not isinstance(iteration, numbers.Integral):
@@ -164,6 +177,99 @@ class Study:
 
     def _repr_html_(self) -> str:
         return self.table._repr_html_()
+
+
+class ServerError(RuntimeError):
+    """A netmc-server refused a request, failed a job, or could not be reached (the CLI's message)."""
+
+
+def _program() -> str:
+    """The netmc program beside this package: a build tree's, else the one on PATH (package netmc)."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    built = os.path.join(here, "..", "..", "client", "netmc")
+    if os.path.isfile(built) and os.access(built, os.X_OK):
+        return os.path.normpath(built)
+    found = shutil.which("netmc")
+    if not found:
+        raise ServerError("netmc: the program is not installed (apt-get install ./netmc_*.deb, or build it)")
+    return found
+
+
+class Client:
+    """A running netmc-server, through the netmc program's own commands (submit, watch, status,
+    cancel, jobs) and so with its security: `token` the admin token's file (what the CLI reads
+    from NETMC_TOKEN_FILE), `tls` the CA's certificate file or a dict(ca=, cert=, key=) (the
+    CLI's NETMC_TLS_CA, NETMC_TLS_CERT, NETMC_TLS_KEY). A job submitted here keeps its cancel
+    token where `netmc submit` keeps it, so this user may cancel it without the admin token."""
+
+    def __init__(self, server: str = "127.0.0.1:7300", *, token: Any = None, tls: Any = None,
+                 timeout: Optional[float] = None):
+        if not isinstance(server, str) or not server:
+            raise TypeError("server: expected 'HOST:PORT'")
+        self.server = server
+        self.timeout = timeout
+        self._environment = dict(os.environ)
+        for name in ("NETMC_TOKEN_FILE", "NETMC_TLS_CA", "NETMC_TLS_CERT", "NETMC_TLS_KEY"):
+            self._environment.pop(name, None)
+        if token is not None:
+            self._environment["NETMC_TOKEN_FILE"] = _text("token", token)
+        if isinstance(tls, dict):
+            unknown = set(tls) - {"ca", "cert", "key"}
+            if unknown or "ca" not in tls:
+                raise TypeError(f"tls: expected dict(ca=FILE[, cert=FILE, key=FILE]), got keys {sorted(tls)}")
+            for key, name in (("ca", "NETMC_TLS_CA"), ("cert", "NETMC_TLS_CERT"), ("key", "NETMC_TLS_KEY")):
+                if key in tls:
+                    self._environment[name] = _text(f"tls {key}", tls[key])
+        elif tls is not None:
+            self._environment["NETMC_TLS_CA"] = _text("tls", tls)
+
+    def _run(self, *arguments: str) -> str:
+        completed = subprocess.run([_program(), *arguments, "--server", self.server], capture_output=True, text=True,
+                                   env=self._environment, timeout=self.timeout)
+        if completed.returncode != 0:
+            lines = [line for line in completed.stderr.splitlines() if line.strip()]
+            message = lines[-1] if lines else f"netmc {arguments[0]} exited {completed.returncode}"
+            message = message[len("netmc: error: "):] if message.startswith("netmc: error: ") else message
+            raise (ValueError if completed.returncode == 2 else ServerError)(message)
+        return completed.stdout
+
+    def submit(self, **flags: Any) -> List[int]:
+        """Queues a study's jobs (the keywords of netmc.sim); returns their ids at once."""
+        keywords, temporary = _with_spec(flags)
+        try:
+            out = self._run("submit", "--quiet", *_arguments("sim", keywords))
+        except ValueError as error:
+            raise _spec_named(error, temporary) from None
+        finally:
+            if temporary:
+                os.unlink(temporary)
+        return [int(line) for line in out.split()]
+
+    def watch(self, job: int) -> Study:
+        """Follows job `job` until it ends; its result as a Study (no traces: a server keeps none).
+        A failed or cancelled job raises ServerError with the server's reason."""
+        return Study.from_json(self._run("watch", str(_job_id(job)), "--quiet", "--json", "-"))
+
+    results = watch
+
+    def status(self, job: Optional[int] = None) -> Dict[str, Any]:
+        """The server's jobs (netmc status --json: netmc.v1.StatusReply), or one job's."""
+        reply = _json.loads(self._run("status", *([str(_job_id(job))] if job is not None else []), "--json"))
+        return reply
+
+    def cancel(self, job: int) -> None:
+        """Cancels job `job` (its own cancel token, or the admin token given as `token`)."""
+        self._run("cancel", str(_job_id(job)))
+
+    def jobs(self) -> Dict[str, Any]:
+        """The server's job history (netmc jobs --json: netmc.v1.JobList)."""
+        return _json.loads(self._run("jobs", "--json"))
+
+
+def _job_id(job: Any) -> int:
+    if isinstance(job, bool) or not isinstance(job, numbers.Integral) or job < 1:
+        raise TypeError(f"job: expected a job id (a positive integer), got {job!r}")
+    return int(job)
 
 
 def _row(run: Dict[str, Any], iteration: Dict[str, Any]) -> Dict[str, Any]:
