@@ -500,6 +500,40 @@ std::string ConsoleService::metrics_page() {
       }
     }
   }
+  // Counted by the server from the nodes' reports (edges between them), kept when a node leaves.
+  page.family("netmc_axis_trips_total", MetricType::counter,
+              "Faults latched on the axis (its drive tripped) since this server first heard of it.");
+  for (const auto& node : nodes_.nodes()) {
+    for (const auto& drive : node.drives()) {
+      page.sample({{"node", node.node()}, {"axis", drive.axis()}}, static_cast<double>(drive.trips()));
+    }
+  }
+  page.family("netmc_axis_quick_stops_total", MetricType::counter,
+              "Entries into Quick stop active seen in the node's reports (every 0.5 s).");
+  for (const auto& node : nodes_.nodes()) {
+    for (const auto& drive : node.drives()) {
+      page.sample({{"node", node.node()}, {"axis", drive.axis()}}, static_cast<double>(drive.quick_stops()));
+    }
+  }
+  // The node's clock as this server measures it (two-way time transfer), where it has.
+  page.family("netmc_node_clock_offset_seconds", MetricType::gauge, "The node's clock minus the server's.");
+  for (const auto& node : nodes_.nodes()) {
+    if (node.clock_measured()) page.sample({{"node", node.node()}}, node.clock_offset_s());
+  }
+  page.family("netmc_node_round_trip_seconds", MetricType::gauge,
+              "Round trip of the clock probe the offset was taken from (the offset is good to half of it).");
+  for (const auto& node : nodes_.nodes()) {
+    if (node.clock_measured()) page.sample({{"node", node.node()}}, node.round_trip_s());
+  }
+  // Two gauges, not an iteration label: a new iteration moves a value, not a series.
+  page.family("netmc_job_last_e_max_meters", MetricType::gauge, "Largest contour error of the job's latest iteration.");
+  for (const auto& last : totals.last_iterations) {
+    page.sample({{"job", std::to_string(last.job_id)}, {"label", last.label}}, last.e_max_m);
+  }
+  page.family("netmc_job_last_iteration", MetricType::gauge, "The job's latest iteration (1-based).");
+  for (const auto& last : totals.last_iterations) {
+    page.sample({{"job", std::to_string(last.job_id)}, {"label", last.label}}, static_cast<double>(last.iteration));
+  }
   page.family("netmc_jobs", MetricType::gauge, "Jobs the server holds, by state (ended ones while in its history).");
   for (const char* state : {"queued", "running", "done", "failed", "cancelled"}) {
     const auto it = totals.jobs_by_state.find(state);
@@ -510,6 +544,9 @@ std::string ConsoleService::metrics_page() {
     page.sample(static_cast<double>(value));
   };
   counter("netmc_iterations_total", "Iterations ended since the server started.", totals.iterations);
+  counter("netmc_iterations_failed_total",
+          "Iterations a job failed during: they never ended, and are in none of the counts below.",
+          totals.failed_iterations);
   counter("netmc_deadline_misses_total", "Cycles computed after their deadline.", totals.deadline_misses);
   counter("netmc_feedback_lost_total", "Feedback samples lost on the uplink.", totals.lost_feedback);
   counter("netmc_setpoints_lost_total", "Setpoints lost on the downlink.", totals.lost_setpoints);

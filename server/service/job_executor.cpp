@@ -242,6 +242,11 @@ void JobExecutor::run(const std::shared_ptr<Job>& shared_job) {
   } catch (const std::exception& error) {
     state = job.cancel.load() ? "cancelled" : "failed";
     done.set_error(error.what());
+    // Failed while its axes ran (the runner had started): the iteration under way never ended.
+    if (state == "failed" && done.has_result() && done.result().iterations_size() < static_cast<int>(job.spec.iterations()) &&
+        !done.result().controller().empty()) {
+      registry_.count_failed_iteration();
+    }
   }
   // A cancelled job ends for its reason; what it was doing when it stopped matters less.
   if (state == "cancelled") done.set_error(registry_.cancel_reason(job));

@@ -155,6 +155,11 @@ void JobRegistry::count_iteration(Job& job, const sim::IterationMetrics& metrics
   job.status.set_iterations_done(static_cast<std::uint32_t>(metrics.iteration));
 }
 
+void JobRegistry::count_failed_iteration() {
+  std::lock_guard lock(mutex_);
+  ++totals_.failed_iterations;
+}
+
 void JobRegistry::count_forged_samples(std::uint64_t forged) {
   std::lock_guard lock(mutex_);
   totals_.forged_samples += forged;
@@ -191,7 +196,16 @@ void JobRegistry::tell_end(const std::shared_ptr<Job>& job, const netmc::v1::Job
 ServiceTotals JobRegistry::totals() const {
   std::lock_guard lock(mutex_);
   ServiceTotals totals = totals_;
-  for (const auto& [id, job] : jobs_) ++totals.jobs_by_state[job->status.state()];
+  for (const auto& [id, job] : jobs_) {
+    ++totals.jobs_by_state[job->status.state()];
+    const netmc::v1::IterationMetrics* last = nullptr;
+    if (!job->iterations.empty()) {
+      last = &job->iterations.back();
+    } else if (job->finished && job->finished->result().iterations_size() > 0) {
+      last = &job->finished->result().iterations(job->finished->result().iterations_size() - 1);
+    }
+    if (last) totals.last_iterations.push_back({id, job->status.label(), last->iteration(), last->e_max_m()});
+  }
   return totals;
 }
 

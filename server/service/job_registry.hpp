@@ -35,6 +35,15 @@ struct ServiceTotals {
   double tau_sum_s = 0.0;
   std::uint64_t tau_count = 0;
   std::map<std::string, std::uint64_t> jobs_by_state;  // of the jobs the service still holds
+  std::uint64_t failed_iterations = 0;  // iterations a job failed during (not in the counts above)
+  // The latest iteration of each job the service holds that has one.
+  struct LastIteration {
+    std::uint64_t job_id = 0;
+    std::string label;
+    std::uint32_t iteration = 0;
+    double e_max_m = 0.0;
+  };
+  std::vector<LastIteration> last_iterations;  // filled by totals()
 };
 
 // A connection following a job (netmc watch); the job keeps it from idling out till it ends.
@@ -106,6 +115,8 @@ class JobRegistry {
   // A running job's iteration counted in the totals; `job_cycles` its cycles per iteration.
   void count_iteration(Job& job, const sim::IterationMetrics& metrics, std::uint64_t job_cycles);
   void count_forged_samples(std::uint64_t forged);
+  // A job failed during an iteration: that iteration never ended, and no metrics of it came.
+  void count_failed_iteration();
   // What a running job waits for before its first cycle, for `netmc status` ("" none).
   void set_waiting_for(Job& job, const std::string& what);
   std::string cancel_reason(const Job& job) const;

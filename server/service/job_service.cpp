@@ -220,6 +220,9 @@ void JobService::fill_node_info(const NodeRecord& record, std::chrono::steady_cl
     entry.set_fault_latched(drive.fault_latched());
     entry.set_last_fault(drive.last_fault());
     entry.set_limits(drive.limits());
+    const auto events = nodes_.axis_events(record.status.node(), drive.axis());
+    entry.set_trips(events.trips);
+    entry.set_quick_stops(events.quick_stops);
   }
   info.set_server_name(record.status.server_name());
 }

@@ -47,6 +47,7 @@ void NodeDirectory::run() {
           nodes_.erase(it);
         }
       } else if (same) {
+        count_axis_events(&it->second.status, *status);
         it->second.status = *status;
         it->second.last_seen = now;
       } else if (name_taken) {
@@ -58,6 +59,7 @@ void NodeDirectory::run() {
         spdlog::info("node {} joined: axes {}, plant {}, {} clock, participant {}", name,
                      fmt::join(status->axes(), ","), status->plant(),
                      status->clock(), status->participant());
+        count_axis_events(nullptr, *status);
         nodes_[name] = NodeRecord{*status, now, now, ""};  // new, or restarted (a new participant)
       }
     }
@@ -106,6 +108,32 @@ void NodeDirectory::judge() {
     }
     record.refused = why;
   }
+}
+
+void NodeDirectory::count_axis_events(const netmc::dds::NodeStatus* before, const netmc::dds::NodeStatus& after) {
+  constexpr const char* kQuickStop = "Quick stop active";
+  for (const auto& drive : after.drives()) {
+    const netmc::dds::AxisDriveStatus* previous = nullptr;
+    if (before) {
+      for (const auto& old : before->drives()) {
+        if (old.axis() == drive.axis()) previous = &old;
+      }
+    }
+    const bool tripped = drive.fault_latched() && !(previous && previous->fault_latched());
+    const bool quick_stop = drive.state() == kQuickStop && !(previous && previous->state() == kQuickStop);
+    if (!tripped && !quick_stop) continue;
+    const auto key = std::make_pair(after.node(), drive.axis());
+    if (!axis_events_.contains(key) && axis_events_.size() >= kMaxCountedAxes) continue;
+    auto& counts = axis_events_[key];
+    counts.trips += tripped ? 1 : 0;
+    counts.quick_stops += quick_stop ? 1 : 0;
+  }
+}
+
+AxisEventCounts NodeDirectory::axis_events(const std::string& node, const std::string& axis) const {
+  std::lock_guard lock(mutex_);
+  const auto found = axis_events_.find({node, axis});
+  return found == axis_events_.end() ? AxisEventCounts{} : found->second;
 }
 
 std::vector<NodeRecord> NodeDirectory::nodes() const {

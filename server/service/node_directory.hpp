@@ -20,6 +20,14 @@
 
 namespace netmc::service {
 
+// What the node's reports showed an axis do, counted by the server (edges between reports: a
+// fault latched, "Quick stop active" entered). Kept while the server runs, a node's leaving
+// included, for up to kMaxCountedAxes axes.
+struct AxisEventCounts {
+  std::uint64_t trips = 0;
+  std::uint64_t quick_stops = 0;
+};
+
 struct NodeRecord {
   netmc::dds::NodeStatus status;
   std::chrono::steady_clock::time_point first_seen;
@@ -40,17 +48,23 @@ class NodeDirectory {
   // The live, unrefused node hosting `axis`.
   std::optional<NodeRecord> node_for_axis(const std::string& axis) const;
   std::chrono::milliseconds expiry() const { return expiry_; }
+  // The counts of `axis` of node `node` (zero if none was seen).
+  AxisEventCounts axis_events(const std::string& node, const std::string& axis) const;
+  static constexpr std::size_t kMaxCountedAxes = 1024;
 
  private:
   void run();
   void expire(std::chrono::steady_clock::time_point now);
   void judge();
   void log_spoof(const std::string& node, const std::string& what);
+  // Under mutex_: the edges from `before` (nullptr: a node new to the directory) to `after`.
+  void count_axis_events(const netmc::dds::NodeStatus* before, const netmc::dds::NodeStatus& after);
 
   dds::SampleReader<netmc::dds::NodeStatus> reader_;
   std::chrono::milliseconds expiry_;
   mutable std::mutex mutex_;
   std::map<std::string, NodeRecord> nodes_;
+  std::map<std::pair<std::string, std::string>, AxisEventCounts> axis_events_;  // (node, axis)
   std::set<std::string> spoofs_logged_;  // what log_spoof said (each once; the first few)
   std::atomic<bool> stop_{false};
   std::thread thread_;

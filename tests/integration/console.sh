@@ -126,8 +126,22 @@ for node, axis in [("con-x", "x"), ("con-y", "y")]:
         assert not states, states  # a node that left has no drive listed
         continue
     assert len(states) == 8 and sum(states.values()) == 1, states
+    # Trips and quick stops: a counter per listed axis (none happened here).
+    assert samples[f'netmc_axis_trips_total{{node="{node}",axis="{axis}"}}'] == 0
+    assert samples[f'netmc_axis_quick_stops_total{{node="{node}",axis="{axis}"}}'] == 0
+# The jobs run above: each one's latest iteration and its e_max, as two gauges of the same series.
+last_e_max = {k: v for k, v in samples.items() if k.startswith("netmc_job_last_e_max_meters{")}
+last_iteration = {k: v for k, v in samples.items() if k.startswith("netmc_job_last_iteration{")}
+assert last_e_max and all(0 < v < 0.05 for v in last_e_max.values()), last_e_max
+assert {k.split("{", 1)[1] for k in last_e_max} == {k.split("{", 1)[1] for k in last_iteration}, (last_e_max, last_iteration)
+assert all(v >= 1 for v in last_iteration.values()), last_iteration
+assert "netmc_iterations_failed_total" in samples
+for k, v in samples.items():
+    if k.startswith("netmc_node_round_trip_seconds{"):
+        assert 0 <= v < 1, (k, v)
 print(f"  {path.rsplit('/', 1)[-1]}: netmc_build_info, process_* (RSS {samples['process_resident_memory_bytes'] / 2**20:.1f} MiB), "
-      f"netmc_node_up con-x {up_x:g} con-y {up_y:g}, netmc_axis_state: 8 series an axis, one of them 1")
+      f"netmc_node_up con-x {up_x:g} con-y {up_y:g}, netmc_axis_state: 8 series an axis, one of them 1, "
+      f"trips and quick stops 0, netmc_job_last_e_max_meters of {len(last_e_max)} job(s)")
 PY
 }
 curl -s -f "$url/metrics" >"$tmp/metrics-both.txt"

@@ -49,6 +49,23 @@ grep -q "event AXIS_FAULT: axis w tripped: .*not finite" "$tmp/drive-w.txt" ||
 grep -q "largest |position| 0 m" "$tmp/drive-w.txt" || { echo "FAIL: axis w moved"; exit 1; }
 kill -0 "${pids[0]}" && kill -0 "${pids[1]}" || { echo "FAIL: an attacked node died"; exit 1; }
 echo "idle axes driven by a rogue server: both tripped at the first command, did not move, and are up"
+# The server counts each trip from the nodes' reports (netmc nodes --json; /metrics' netmc_axis_trips_total).
+for _ in $(seq 50); do
+  "$netmc" nodes --server "127.0.0.1:$port" --json >"$tmp/nodes.json"
+  python3 - "$tmp/nodes.json" <<'PY' && break
+import json, sys
+drives = {d["axis"]: d for n in json.load(open(sys.argv[1]))["nodes"] for d in n.get("drives", [])}
+sys.exit(0 if all(int(drives.get(a, {}).get("trips", 0)) == 1 for a in ("z", "w")) else 1)
+PY
+  sleep 0.1
+done
+python3 - "$tmp/nodes.json" <<'PY' || { echo "FAIL: the server did not count one trip each of z and w"; cat "$tmp/nodes.json"; exit 1; }
+import json, sys
+drives = {d["axis"]: d for n in json.load(open(sys.argv[1]))["nodes"] for d in n.get("drives", [])}
+assert all(int(drives[a]["trips"]) == 1 for a in ("z", "w")), {a: drives[a].get("trips") for a in ("z", "w")}
+assert int(drives["x"].get("trips", 0)) == 0
+PY
+echo "the server counted the trips: z 1, w 1, x 0 (netmc nodes --json)"
 
 # 2. Hijack of a lockstep job.
 study=(--controller adrc+ilccc --iterations 2)
