@@ -101,6 +101,14 @@ std::string ControllerRegistry::names_help() const {
                      join_list(axis), join_list(compensators), join_list(groups), join_list(tracking));
 }
 
+std::vector<std::string> ControllerRegistry::single_axis_names() const {
+  std::vector<std::string> names;
+  for (const auto& family : families_) {
+    if (family.role == ControllerRole::tracking) names.insert(names.end(), family.names.begin(), family.names.end());
+  }
+  return names;
+}
+
 std::string ControllerRegistry::markdown_table() const {
   std::string table =
       "| controller | role | gains | source | defaults tuned for | what it is |\n"

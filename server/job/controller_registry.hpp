@@ -60,6 +60,8 @@ class ControllerRegistry {
 
   // "adrc, pid ... | AXIS+COMPENSATOR ..." for --controller's help.
   std::string names_help() const;
+  // The laws of one axis on a tracking reference (ControllerRole::tracking), by name.
+  std::vector<std::string> single_axis_names() const;
   // A Markdown table of every family: name, role, gains flag, source, tuned for, what it is.
   std::string markdown_table() const;
 

@@ -26,6 +26,7 @@
 #include "server/job/delay_compensators.hpp"
 #include "server/job/legacy_spec.hpp"
 #include "server/job/plant_source.hpp"
+#include "server/job/quantity_text.hpp"
 #include "server/job/reference_limits.hpp"
 
 namespace netmc::job {
@@ -396,8 +397,16 @@ std::vector<std::string> axis_names(const netmc::v1::JobSpec& spec) {
     return {defaults.begin(), defaults.begin() + static_cast<std::ptrdiff_t>(count)};
   }
   if (static_cast<std::size_t>(spec.axes_size()) != count) {
+    // One axis named for a law of a group: say which laws run one axis, and how.
+    const std::string single_axis =
+        spec.axes_size() == 1 && count > 1
+            ? "; a single axis runs a single-axis law on a multi-sine reference (" +
+                  join_list(ControllerRegistry::global().single_axis_names()) +
+                  "), e.g. --axes " + spec.axes(0).substr(0, 32) + " --preset thesis-dead-zone --controller axis-diarc"
+            : "";
     throw std::invalid_argument("axes: a " + std::to_string(count) + "-axis job needs " + std::to_string(count) +
-                                (count == 1 ? " axis name, got " : " axis names, got ") + std::to_string(spec.axes_size()));
+                                (count == 1 ? " axis name, got " : " axis names, got ") + std::to_string(spec.axes_size()) +
+                                single_axis);
   }
   std::vector<std::string> names(spec.axes().begin(), spec.axes().end());
   for (std::size_t i = 0; i < names.size(); ++i) {

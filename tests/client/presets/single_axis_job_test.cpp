@@ -188,6 +188,13 @@ TEST(SingleAxisJob, BadSpecsNameTheField) {
   spec.add_axes("a");
   spec.add_axes("b");
   EXPECT_EQ(message(spec).rfind("axes: a 1-axis job needs 1 axis name", 0), 0u) << message(spec);
+  // A law of two axes asked for one: refused, naming the laws that run one axis and how.
+  netmc::v1::JobSpec planar = cli::make_preset("seed001").jobs.front();
+  planar.add_axes("x");
+  EXPECT_EQ(message(planar),
+            "axes: a 2-axis job needs 2 axis names, got 1; a single axis runs a single-axis law on a multi-sine "
+            "reference (axis-diarc, axis-diarc+nominal-inverse, axis-diarc+exact-inverse, axis-diarc-dead-zone, "
+            "axis-avsc), e.g. --axes x --preset thesis-dead-zone --controller axis-diarc");
   spec = preset_job("C3 I");
   spec.set_plant("linmotor");  // a contouring controller's plant works; a planar controller does not
   spec.mutable_controller()->set_name("gtcf-sarc");
