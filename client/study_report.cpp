@@ -378,8 +378,12 @@ void write_trace_directory(const std::string& directory, const std::vector<RunOu
     throw std::runtime_error(directory + ": cannot create the trace directory");
   }
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
-    write_file_atomically((std::filesystem::path(directory) / trace_file_name(i, outcomes[i].result.label())).string(),
-                          trace_csv(outcomes[i].last_trace, outcomes[i].estimate_names));
+    const auto& outcome = outcomes[i];
+    // Every iteration's traces kept (TraceRecording::every_iteration): the last of them.
+    const auto& last = outcome.last_trace.empty() && !outcome.iteration_traces.empty() ? outcome.iteration_traces.back()
+                                                                                       : outcome.last_trace;
+    write_file_atomically((std::filesystem::path(directory) / trace_file_name(i, outcome.result.label())).string(),
+                          trace_csv(last, outcome.estimate_names));
   }
 }
 

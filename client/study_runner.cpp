@@ -32,15 +32,22 @@ std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, TraceRecordi
         RunOutcome& out = outcomes[i];
         sim::ContourJobRunner runner(std::move(*jobs[i]));
         out.result = job::describe_run(spec, runner.controller_description());
-        runner.run_all([&](const sim::IterationRecord& record) {
+        // Iteration by iteration (as run_all, which keeps every record): a kept trace is moved,
+        // not copied.
+        const std::size_t iterations = runner.job().iterations;
+        while (runner.completed_iterations() < iterations) {
+          sim::IterationRecord record = runner.run_iteration();
           *out.result.add_iterations() = job::to_proto(record.metrics);
-          if (record_traces) {
-            out.last_trace = record.trace;
-            out.estimate_names = record.metrics.estimate_names;
+          if (traces != TraceRecording::none) out.estimate_names = record.metrics.estimate_names;
+          const bool diverged = record.metrics.diverged;
+          if (traces == TraceRecording::every_iteration) {
+            out.iteration_traces.push_back(std::move(record.trace));  // last_trace stays empty: the last of these
+          } else if (record_traces) {
+            out.last_trace = std::move(record.trace);
           }
-          if (traces == TraceRecording::every_iteration) out.iteration_traces.push_back(record.trace);
           if (on_iteration) on_iteration();
-        });
+          if (diverged) break;
+        }
       } catch (...) {
         errors[i] = std::current_exception();
       }

@@ -15,7 +15,7 @@ enum class TraceRecording { none, last_iteration, every_iteration };
 
 struct RunOutcome {
   netmc::v1::RunResult result;
-  std::vector<sim::CycleTrace> last_trace;   // per-cycle trace of the last iteration (if asked)
+  std::vector<sim::CycleTrace> last_trace;   // per-cycle trace of the last iteration (last_iteration)
   std::vector<std::vector<sim::CycleTrace>> iteration_traces;  // every iteration's (every_iteration)
   std::vector<control::EstimateName> estimate_names;  // the trace's controller estimates
 };

@@ -15,6 +15,8 @@
 #include "client/sim_command.hpp"
 #include "client/sweep_command.hpp"
 #include "client/sweep_shard.hpp"
+#include "server/job/job_builder.hpp"
+#include "server/sim/contour_job_runner.hpp"
 
 namespace py = pybind11;
 
@@ -72,7 +74,56 @@ py::array_t<double> to_array(const std::vector<double>& values) {
   return array;
 }
 
-py::dict run_sim(const std::vector<std::string>& arguments) {
+// The per-cycle traces of a study, turned into numpy arrays only when Python asks for one
+// iteration's (Study.trace). Recorded during the run (traces="all"), or made on demand: the run is
+// deterministic for its seed, so running its job again up to that iteration, recording, gives
+// the iteration's own trace (traces="on-demand": the study itself costs what the CLI's does).
+class StudyTraces {
+ public:
+  StudyTraces(std::vector<netmc::v1::JobSpec> jobs, std::vector<cli::RunOutcome> outcomes, bool recorded)
+      : jobs_(std::move(jobs)), outcomes_(std::move(outcomes)), recorded_(recorded) {}
+  std::size_t iterations(std::size_t run) const {
+    return static_cast<std::size_t>(outcomes_.at(run).result.iterations_size());
+  }
+  bool recorded() const { return recorded_; }
+  py::dict columns(std::size_t run, std::size_t iteration) const {
+    const auto& outcome = outcomes_.at(run);
+    if (iteration >= iterations(run)) throw std::out_of_range("iteration: beyond the run's iterations");
+    if (recorded_) return to_columns(outcome.iteration_traces.at(iteration), outcome.estimate_names);
+    sim::IterationRecord record;
+    {
+      py::gil_scoped_release release;
+      sim::ContourJob job = job::build_contour_job(jobs_.at(run));
+      job.record_traces = true;
+      sim::ContourJobRunner runner(std::move(job));
+      while (runner.completed_iterations() <= iteration) record = runner.run_iteration();
+    }
+    return to_columns(record.trace, record.metrics.estimate_names);
+  }
+
+ private:
+  static py::dict to_columns(const std::vector<sim::CycleTrace>& trace,
+                             const std::vector<control::EstimateName>& estimate_names) {
+    py::dict columns;
+    for (const auto& column : cli::trace_columns(trace, estimate_names)) {
+      columns[py::str(column.name)] = to_array(column.values);
+    }
+    return columns;
+  }
+
+  std::vector<netmc::v1::JobSpec> jobs_;
+  std::vector<cli::RunOutcome> outcomes_;
+  bool recorded_;
+};
+
+cli::TraceRecording trace_recording(const std::string& traces) {
+  if (traces == "all") return cli::TraceRecording::every_iteration;
+  if (traces == "on-demand" || traces == "none") return cli::TraceRecording::none;
+  throw std::invalid_argument("traces: expected 'on-demand', 'all' or 'none', got '" + traces.substr(0, 32) + "'");
+}
+
+py::dict run_sim(const std::vector<std::string>& arguments, const std::string& traces) {
+  const cli::TraceRecording recording = trace_recording(traces);
   CLI::App root("netmc");
   cli::SimFlags flags;
   cli::add_sim_flags(root, flags);
@@ -81,7 +132,7 @@ py::dict run_sim(const std::vector<std::string>& arguments) {
   std::optional<cli::SimStudy> study;
   {
     py::gil_scoped_release release;
-    study = cli::run_sim(flags, report, cli::TraceRecording::every_iteration, true);
+    study = cli::run_sim(flags, report, recording, true);
   }
   py::dict out;
   out["table"] = report.str();
@@ -90,22 +141,15 @@ py::dict run_sim(const std::vector<std::string>& arguments) {
     return out;
   }
   out["json"] = study->json;
-  py::list runs;
-  for (const auto& outcome : study->outcomes) {
-    py::dict run;
-    run["label"] = outcome.result.label();
-    py::list traces;
-    for (const auto& trace : outcome.iteration_traces) {
-      py::dict columns;
-      for (const auto& column : cli::trace_columns(trace, outcome.estimate_names)) {
-        columns[py::str(column.name)] = to_array(column.values);
-      }
-      traces.append(columns);
-    }
-    run["traces"] = traces;
-    runs.append(run);
+  py::list labels;
+  for (const auto& outcome : study->outcomes) labels.append(outcome.result.label());
+  out["labels"] = labels;
+  if (traces == "none") {
+    out["traces"] = py::none();
+  } else {
+    out["traces"] = std::make_shared<StudyTraces>(study->plan.jobs, std::move(study->outcomes),
+                                                  recording == cli::TraceRecording::every_iteration);
   }
-  out["runs"] = runs;
   return out;
 }
 
@@ -157,7 +201,11 @@ PYBIND11_MODULE(_core, module) {
   module.attr("version") = NETMC_VERSION;
   module.def("command_flags", &netmc::python::command_flags, py::arg("command"));
   module.def("command_help", &netmc::python::command_help, py::arg("command"));
-  module.def("sim", &netmc::python::run_sim, py::arg("arguments"));
+  py::class_<netmc::python::StudyTraces, std::shared_ptr<netmc::python::StudyTraces>>(module, "StudyTraces")
+      .def("iterations", &netmc::python::StudyTraces::iterations, py::arg("run"))
+      .def("recorded", &netmc::python::StudyTraces::recorded)
+      .def("columns", &netmc::python::StudyTraces::columns, py::arg("run"), py::arg("iteration"));
+  module.def("sim", &netmc::python::run_sim, py::arg("arguments"), py::arg("traces") = "on-demand");
   module.def("sweep", &netmc::python::run_sweep, py::arg("arguments"), py::arg("keep_json") = false);
   module.def("sweep_size", &netmc::python::sweep_size, py::arg("arguments"));
   module.def("merge_parts", &netmc::python::merge_parts, py::arg("parts"));

@@ -32,6 +32,7 @@ with open(template_path) as template:
 text += f"""
 def sim(
     *,
+    traces: str = ...,
 {keywords("sim")}
     spec: Optional[Union[str, PathLike[str], Dict[str, Any]]] = ...,
 ) -> Study: ...

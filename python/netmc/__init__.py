@@ -124,9 +124,17 @@ class Study:
     def __init__(self, raw: Dict[str, Any]):
         self._json: str = raw["json"]
         self.text: str = raw["table"]
-        self.results: Dict[str, Any] = _json.loads(self._json)
-        self._traces = {run["label"]: run["traces"] for run in raw["runs"]}
-        self.labels: List[str] = [run["label"] for run in raw["runs"]]
+        self._results: Optional[Dict[str, Any]] = None
+        self._traces = raw.get("traces")  # _core.StudyTraces (numpy arrays made on demand), or None
+        self._trace_cache: Dict[Any, Dict[str, Any]] = {}
+        self.labels: List[str] = list(raw["labels"])
+
+    @property
+    def results(self) -> Dict[str, Any]:
+        """The study's results, as `netmc sim --json` writes them, parsed."""
+        if self._results is None:
+            self._results = _json.loads(self._json)
+        return self._results
 
     @classmethod
     def from_json(cls, text: str) -> "Study":
@@ -134,8 +142,9 @@ class Study:
         results = _json.loads(text)
         if not isinstance(results, dict) or not isinstance(results.get("runs"), list):
             raise ValueError("results: expected the JSON of netmc sim --json ({\"runs\": [...]})")
-        return cls({"json": text, "table": "", "runs": [{"label": run.get("label", ""), "traces": []}
-                                                       for run in results["runs"]]})
+        study = cls({"json": text, "table": "", "labels": [run.get("label", "") for run in results["runs"]]})
+        study._results = results
+        return study
 
     def to_json(self) -> str:
         """Exactly what `netmc sim --json` writes for the same flags."""
@@ -159,18 +168,23 @@ class Study:
     def trace(self, label: str, iteration: Optional[int] = None) -> Dict[str, Any]:
         """The per-cycle signals of run `label`'s iteration (1-based; default: its last) as numpy
         arrays, named as the columns of `netmc sim --csv` (time_s, x_ref_m, x_m, contour_error_m, ...)."""
-        if label not in self._traces:
+        if label not in self.labels:
             raise KeyError(f"label: no run '{label}' in this study (runs: {', '.join(self.labels)})")
-        traces = self._traces[label]
-        if not traces:
-            raise LookupError(f"run '{label}': this study has no traces (a server's job, or a results file)")
+        if self._traces is None:
+            raise LookupError(f"run '{label}': this study has no traces (netmc.sim(traces='none'), a server's job, "
+                              "or a results file)")
+        run = self.labels.index(label)
+        count = self._traces.iterations(run)
         if iteration is None:
-            iteration = len(traces)
+            iteration = count
         if isinstance(iteration, bool) or not isinstance(iteration, numbers.Integral):
             raise TypeError(f"iteration: expected an integer, got {type(iteration).__name__}")
-        if not 1 <= iteration <= len(traces):
-            raise IndexError(f"iteration: run '{label}' has iterations 1 to {len(traces)}, got {iteration}")
-        return dict(traces[int(iteration) - 1])
+        if not 1 <= iteration <= count:
+            raise IndexError(f"iteration: run '{label}' has iterations 1 to {count}, got {iteration}")
+        key = (run, int(iteration))
+        if key not in self._trace_cache:
+            self._trace_cache[key] = self._traces.columns(run, int(iteration) - 1)
+        return dict(self._trace_cache[key])
 
     def __repr__(self) -> str:
         return self.text
@@ -299,10 +313,10 @@ def _spec_named(error: ValueError, temporary: Optional[str]) -> ValueError:
     return ValueError(str(error).replace(temporary, "spec")) if temporary else error
 
 
-def sim(**flags: Any) -> Study:
+def sim(*, traces: str = "on-demand", **flags: Any) -> Study:
     keywords, temporary = _with_spec(flags)
     try:
-        return Study(_core.sim(_arguments("sim", keywords)))
+        return Study(_core.sim(_arguments("sim", keywords), traces))
     except ValueError as error:
         raise _spec_named(error, temporary) from None
     finally:
@@ -358,6 +372,11 @@ Keywords are the flags of `netmc sim` (a list joins with commas; a switch is Tru
 {_keyword_doc("sim")}
 
 spec= also takes a dict (a job spec as `netmc sim --print-spec` prints it).
+traces= how Study.trace gets an iteration's per-cycle signals: 'on-demand' (default) runs that
+run again up to the iteration, recording (the run is deterministic for its seed: the same
+iteration, and the study itself costs what `netmc sim` does); 'all' records every iteration while
+the study runs (memory: about 1 MB per run and iteration of paper 001); 'none' keeps no way to
+them.
 """
 
 sweep.__doc__ = f"""Runs a grid as `netmc sweep` does and returns its CSV rows as a pandas DataFrame.

@@ -57,6 +57,19 @@ class SimTest(unittest.TestCase):
         # Iterations differ (ILC learns), and the default is the last.
         self.assertFalse(numpy.array_equal(trace["y_m"], self.study.trace("adrc+ilccc", 1)["y_m"]))
         self.assertTrue(numpy.array_equal(self.study.trace("adrc+ilccc")["y_m"], self.study.trace("adrc+ilccc", 5)["y_m"]))
+        # On demand (the default) the run is run again up to the iteration: the same trace, bit for
+        # bit, as the one recorded while the study ran (traces="all").
+        recorded = netmc.sim(iterations=5, traces="all")
+        self.assertEqual(recorded.to_json(), self.study.to_json())
+        for label, iteration in (("adrc+ilccc", 3), ("adrc", 5), ("adrc+pidccc", 1)):
+            on_demand, kept = self.study.trace(label, iteration), recorded.trace(label, iteration)
+            self.assertEqual(sorted(on_demand), sorted(kept))
+            for name in kept:
+                self.assertTrue(numpy.array_equal(on_demand[name], kept[name]), (label, iteration, name))
+        with self.assertRaisesRegex(LookupError, "no traces"):
+            netmc.sim(iterations=1, traces="none").trace("adrc")
+        with self.assertRaisesRegex(ValueError, "traces: expected 'on-demand', 'all' or 'none'"):
+            netmc.sim(iterations=1, traces="some")
         with self.assertRaisesRegex(IndexError, "iterations 1 to 5, got 6"):
             self.study.trace("adrc", 6)
         with self.assertRaisesRegex(KeyError, "no run 'pid'"):
