@@ -45,7 +45,8 @@ TEST(NetmcCli, BadInputFailsWithOneMessageNamingTheFieldAndWritesNothing) {
       {"--delay uniform:min=2ms,max=1ms", "downlink.delay"},
       {"--plant steam", "plant"},
       {"--iterations 0", "--iterations"},
-      {"--compensate smith", "--compensate: expected none | predictor | packets[:horizon=N] | predictor+packets[:horizon=N], got 'smith'"},
+      {"--compensate smith", "--compensate: expected none | predictor[:playout=D|bound] | packets[:horizon=N] | "
+                              "predictor+packets[:horizon=N,playout=D|bound], got 'smith'"},
       {"--compensate packets:horizon=0", "--compensate: expected packets:horizon=N with N an integer of 2 to 64"},
       {"--compensate predictor+packets:horizon=65", "--compensate: expected predictor+packets:horizon=N with N an integer of 2 to 64"},
       {"--controller gtcf-adrc --compensate packets", "controller 'gtcf-adrc' cannot be copied"},
