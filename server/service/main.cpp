@@ -74,6 +74,11 @@ int main(int argc, char** argv) {
   int keep_jobs = 10000;
   app.add_option("--keep-jobs", keep_jobs, "With --state-dir: ended jobs kept, the newest; older ones are deleted")
       ->check(CLI::Range(1, 10000000));
+  std::string backup_file;
+  app.add_option("--backup", backup_file,
+                 "With --state-dir: write a consistent copy of the job store to FILE (one file, what the "
+                 "write-ahead log holds included; beside a running server) and exit")
+      ->type_name("FILE");
   double keep_days = 90.0;
   app.add_option("--keep-days", keep_days, "With --state-dir: ended jobs older than this are deleted")
       ->check(CLI::Range(0.001, 36500.0));
@@ -155,6 +160,21 @@ int main(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {
     std::cerr << "netmc-server: error: " << e.what() << "\n";
     return 2;
+  }
+  if (!backup_file.empty()) {
+    if (state_dir.empty()) {
+      std::cerr << "netmc-server: error: --backup: needs --state-dir DIR (the store to copy)\n";
+      return 2;
+    }
+    try {
+      const std::size_t jobs = netmc::store::JobStore::backup(state_dir, backup_file);
+      std::cout << "netmc-server: backed up " << jobs << " jobs of " << state_dir << "/jobs.sqlite to " << backup_file
+                << "\n";
+      return 0;
+    } catch (const netmc::store::StoreError& error) {
+      std::cerr << "netmc-server: error: " << error.what() << "\n";
+      return 1;
+    }
   }
   std::string listen_address;
   std::uint16_t port = 0;

@@ -409,6 +409,69 @@ std::vector<StoredJob> JobStore::read(const std::filesystem::path& directory, co
   }
 }
 
+std::size_t JobStore::backup(const std::filesystem::path& directory, const std::filesystem::path& file) {
+  const auto source_file = directory / "jobs.sqlite";
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(source_file, error)) {
+    throw StoreError("--state-dir " + directory.string() + ": no job store there (" + source_file.string() +
+                     " is missing)");
+  }
+  const auto parent = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(parent, error)) {
+    throw StoreError("--backup " + file.string() + ": directory " + parent.string() + " does not exist");
+  }
+  if (std::filesystem::exists(file, error) && std::filesystem::equivalent(file, source_file, error)) {
+    throw StoreError("--backup " + file.string() + ": that is the store itself");
+  }
+  const auto temporary = std::filesystem::path(file.string() + ".partial");
+  std::filesystem::remove(temporary, error);
+  sqlite3* source = open_database(source_file, SQLITE_OPEN_READONLY);
+  sqlite3* target = nullptr;
+  const auto fail = [&](const std::string& why) {
+    sqlite3_close(target);
+    sqlite3_close(source);
+    std::filesystem::remove(temporary, error);
+    return StoreError("--backup " + file.string() + ": " + why);
+  };
+  try {
+    if (schema_version(source) != kSchemaVersion) throw StoreError("the store's schema is not this netmc's");
+    target = open_database(temporary, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  } catch (const StoreError& problem) {
+    throw fail(problem.what());
+  }
+  // The whole database in one step: a writer's commit meanwhile restarts it, so it is one state.
+  sqlite3_backup* copy = sqlite3_backup_init(target, "main", source, "main");
+  if (!copy) throw fail(sqlite3_errmsg(target));
+  int code = SQLITE_OK;
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    code = sqlite3_backup_step(copy, -1);
+    if (code != SQLITE_BUSY && code != SQLITE_LOCKED) break;
+    sqlite3_sleep(50);
+  }
+  sqlite3_backup_finish(copy);
+  if (code != SQLITE_DONE) throw fail(std::string("the copy failed: ") + sqlite3_errstr(code));
+  std::size_t jobs = 0;
+  try {
+    // The copy is a database in one file (no write-ahead log of its own to lose).
+    execute(target, "PRAGMA journal_mode=DELETE");
+    Statement integrity(target, "PRAGMA integrity_check");
+    if (!integrity.step() || integrity.bytes(0) != "ok") throw StoreError("the copy fails its integrity check");
+    Statement count(target, "SELECT COUNT(*) FROM jobs");
+    count.step();
+    jobs = static_cast<std::size_t>(count.integer(0));
+  } catch (const StoreError& problem) {
+    throw fail(problem.what());
+  }
+  sqlite3_close(target);
+  sqlite3_close(source);
+  std::filesystem::rename(temporary, file, error);
+  if (error) {
+    std::filesystem::remove(temporary, error);
+    throw StoreError("--backup " + file.string() + ": cannot rename the copy into place: " + error.message());
+  }
+  return jobs;
+}
+
 std::string JobStore::problem() const {
   std::lock_guard lock(mutex_);
   return problem_;

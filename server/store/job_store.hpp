@@ -111,6 +111,12 @@ class JobStore {
   // creates nothing, takes no lock, and works while a server owns the store). Throws StoreError
   // naming the file when there is no store of this schema there.
   static std::vector<StoredJob> read(const std::filesystem::path& directory, const JobFilter& filter);
+  // netmc-server --state-dir DIR --backup FILE: a consistent copy of DIR/jobs.sqlite in one file,
+  // what the write-ahead log holds included (a copy of jobs.sqlite alone may hold none of the
+  // newest jobs), taken by SQLite's online backup from a read-only connection: beside a running
+  // server, taking no lock. FILE is written whole (a temporary beside it, then renamed) and checked
+  // (PRAGMA integrity_check). Returns the jobs in it. Throws StoreError naming the file.
+  static std::size_t backup(const std::filesystem::path& directory, const std::filesystem::path& file);
 
   // Empty while writes succeed; otherwise why the latest one failed.
   std::string problem() const;

@@ -240,6 +240,57 @@ TEST_F(JobStoreTest, ReadListsWhatTheOwnerListsWithoutTheOwner) {
   EXPECT_FALSE(fs::exists(nowhere));
 }
 
+TEST_F(JobStoreTest, ABackupHoldsWhatTheWriteAheadLogHoldsInOneFile) {
+  JobFilter all;
+  const auto copy_dir = directory_ / "copy";
+  const auto plain_dir = directory_ / "plain";
+  fs::create_directories(copy_dir);
+  fs::create_directories(plain_dir);
+  {
+    JobStore owner(directory_, {});
+    const auto first = owner.accept(job("first"));
+    owner.accept(job("second"));
+    owner.iteration(first, 1, "metrics 1");
+    owner.ended(first, "done", "", "finished");
+    owner.flush();
+    // While the server owns the store, its newest writes are in jobs.sqlite-wal: a copy of
+    // jobs.sqlite alone holds none of them (no checkpoint has run).
+    ASSERT_TRUE(fs::exists(directory_ / "jobs.sqlite-wal"));
+    fs::copy_file(directory_ / "jobs.sqlite", plain_dir / "jobs.sqlite");
+    EXPECT_EQ(query("SELECT COUNT(*) FROM jobs"), 2);  // through SQLite, which reads the log
+    EXPECT_EQ(JobStore::backup(directory_, copy_dir / "jobs.sqlite"), 2u);
+  }
+  // The backup: one file (no log beside it), integrity checked, the same jobs as the store.
+  EXPECT_FALSE(fs::exists(copy_dir / "jobs.sqlite-wal"));
+  EXPECT_FALSE(fs::exists(copy_dir / "jobs.sqlite.partial"));
+  const auto copied = JobStore::read(copy_dir, all);
+  const auto original = JobStore::read(directory_, all);
+  ASSERT_EQ(copied.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(copied[i].id, original[i].id);
+    EXPECT_EQ(copied[i].state, original[i].state);
+    EXPECT_EQ(copied[i].label, original[i].label);
+  }
+  try {
+    const auto plain = JobStore::read(plain_dir, all);
+    EXPECT_LT(plain.size(), 2u);  // what a copy of the file alone misses
+  } catch (const StoreError&) {
+    // or not even the schema: the log held that too
+  }
+  // Refused, naming the flag: no store, no directory for the file, the store itself.
+  const auto refused = [&](const fs::path& dir, const fs::path& file, const std::string& expected) {
+    try {
+      JobStore::backup(dir, file);
+      ADD_FAILURE() << "backed up " << dir << " to " << file;
+    } catch (const StoreError& error) {
+      EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
+    }
+  };
+  refused(directory_ / "none", copy_dir / "x.sqlite", "no job store there");
+  refused(directory_, directory_ / "missing" / "x.sqlite", "does not exist");
+  refused(directory_, directory_ / "jobs.sqlite", "that is the store itself");
+}
+
 TEST_F(JobStoreTest, IdsAreNeverReusedAfterRetentionDeletes) {
   Retention keep_two;
   keep_two.keep_jobs = 2;
