@@ -1,6 +1,6 @@
 // Bare Fast DDS ping-pong with netmc's own sample types and realtime QoS (best-effort): the
 // reference for the closed loop's feedback-to-setpoint round trip. One process pongs, one pings.
-// Run: bench/dds_round_trip.sh BUILD_DIR (starts both and the closed loop).
+// Run: bench/realtime_sweep.sh BUILD_DIR (starts a pong and a ping beside each closed-loop run).
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>

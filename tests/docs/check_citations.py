@@ -12,6 +12,10 @@ build*/), a line fails when it
   - names a page docs/...md that does not exist;
   - cites a source by a short name "paper 0NN" (also paper0NN in identifiers) that
     docs/references.md does not define (the first column of its table of short names).
+  - names, in backticks, a path of the repository that it does not have: in docs/ and README.md
+    anywhere, in code only inside comments (`server/sim/contour_server.cpp`, `tests/components`;
+    a path starts with a top-level folder of the repository; one with a placeholder, a wildcard
+    or an ellipsis is no path).
 This script itself is not scanned.
 
 Usage: check_citations.py REPOSITORY_ROOT
@@ -31,6 +35,11 @@ DIGEST_CITATION = re.compile(
     r"(design|seeds?)[ -]digest|digest('s)?\s*(\(?\s*§|\(?\s*\d|\[[ADG]\])", re.IGNORECASE)
 ARCHITECTURE = re.compile(r"([\w./-]*)architecture\.md")
 DOCS_PAGE = re.compile(r"([\w./-]*docs/[\w./-]*\.md)\b")
+TOP_FOLDERS = ("bench", "client", "cmake", "control", "docker", "docs", "examples", "idl", "netsim", "plant",
+               "python", "scripts", "server", "tests")
+BACKTICKED_PATH = re.compile(r"`((?:" + "|".join(TOP_FOLDERS) + r")/[^`\s]*)`")
+NOT_A_PATH = re.compile(r"[*{}<>%$|]|\.\.\.|…|[A-Z]{3,}")
+COMMENT = re.compile(r"(//|#|/\*|^\s*\*)")
 SHORT_NAME = re.compile(r"\bpaper[ _-]?(0\d\d)(?!\d)", re.IGNORECASE)
 DEFINED_NAME = re.compile(r"^\|\s*paper (0\d\d)\b", re.IGNORECASE)
 
@@ -100,7 +109,7 @@ def main():
         return 2
     root = os.path.abspath(sys.argv[1])
     failures = []
-    counts = {"digest": 0, "architecture": 0, "page": 0, "name": 0}
+    counts = {"digest": 0, "architecture": 0, "page": 0, "name": 0, "path": 0}
     names = defined_short_names(root)
     if names is None:
         failures.append(f"{REFERENCES}: missing: it defines the short names the sources are cited by")
@@ -132,6 +141,16 @@ def main():
                 if not page_exists(root, relative, m.group(1)):
                     counts["page"] += 1
                     failures.append(f"{where}: names {m.group(1)}, which the repository does not have")
+            prose = relative.endswith(".md")
+            comment = None if prose else COMMENT.search(line)
+            if prose or comment:
+                text = line if prose else line[comment.start():]
+                for m in BACKTICKED_PATH.finditer(text):
+                    path = re.sub(r"(:\d+)+$", "", m.group(1)).rstrip(".,:;)")
+                    if NOT_A_PATH.search(path) or os.path.exists(os.path.join(root, path)):
+                        continue
+                    counts["path"] += 1
+                    failures.append(f"{where}: names `{path}`, which the repository does not have")
             for m in SHORT_NAME.finditer(line):
                 if m.group(1) not in names:
                     counts["name"] += 1
@@ -141,7 +160,8 @@ def main():
     defined = ", ".join(f"paper {n}" for n in sorted(names)) or "none"
     print(f"{scanned} files checked ({defined} defined; {hash_uses} hash-digest uses allowed): "
           f"{counts['digest']} digest citations, {counts['architecture']} architecture.md citations outside docs/, "
-          f"{counts['page']} missing docs pages, {counts['name']} undefined short names; "
+          f"{counts['page']} missing docs pages, {counts['name']} undefined short names, "
+          f"{counts['path']} backticked paths the repository does not have; "
           f"{len(failures)} failures")
     return 1 if failures else 0
 
