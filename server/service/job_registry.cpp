@@ -257,18 +257,32 @@ std::vector<std::shared_ptr<Job>> JobRegistry::restore_from_store() {
       ++failed;
       continue;
     }
-    if (!job->spec.ParseFromString(stored.spec)) {
+    const auto fail_stored = [&](const std::string& why) {
       job->status.set_state("failed");
-      job->status.set_error("its stored spec cannot be read");
-      options_.store->ended(job->id, "failed", job->status.error(), {});
+      job->status.set_error(why);
+      job->ended_unix_s = unix_now_s();
+      options_.store->ended(job->id, "failed", why, {});
       ended_.push_back(job->id);
+      ++failed;
+    };
+    if (!job->spec.ParseFromString(stored.spec)) {
+      fail_stored("its stored spec cannot be read");
+      continue;
+    }
+    // A stored spec is checked as a submitted one is (the store is a file anyone with access to
+    // it may have edited): no path it names is opened, every field in range, its axes named.
+    try {
+      job::reject_file_references(job->spec);
+      job::build_contour_job(job->spec, options_.build_options());
+      job->axes = job::axis_names(job->spec);
+    } catch (const std::exception& error) {
+      fail_stored(std::string("its stored spec fails the checks of a submitted one: ") + error.what());
       continue;
     }
     job->spec_bytes = job->spec.ByteSizeLong();
-    job->axes = job::axis_names(job->spec);
     requeued.push_back(job);
   }
-  spdlog::info("job store {}: {} ended jobs in memory, {} queued again, {} failed by the restart",
+  spdlog::info("job store {}: {} ended jobs in memory, {} queued again, {} failed (by the restart, or their stored spec)",
                options_.store->file().string(), contents.ended.size(), requeued.size(), failed);
   return requeued;
 }
