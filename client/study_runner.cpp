@@ -38,7 +38,7 @@ std::vector<RunOutcome> run_study_in_process(const StudyPlan& plan, TraceRecordi
         while (runner.completed_iterations() < iterations) {
           sim::IterationRecord record = runner.run_iteration();
           *out.result.add_iterations() = job::to_proto(record.metrics);
-          if (traces != TraceRecording::none) out.estimate_names = record.metrics.estimate_names;
+          if (record_traces) out.estimate_names = record.metrics.estimate_names;
           const bool diverged = record.metrics.diverged;
           if (traces == TraceRecording::every_iteration) {
             out.iteration_traces.push_back(std::move(record.trace));  // last_trace stays empty: the last of these

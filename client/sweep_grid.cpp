@@ -89,21 +89,11 @@ std::vector<std::uint64_t> parse_seed_axis(const std::string& text) {
 }
 
 std::optional<double> delay_upper_bound_s(const netmc::v1::DelayProfile& d) {
-  using netmc::v1::DelayProfile;
-  switch (d.kind_case()) {
-    case DelayProfile::KIND_NOT_SET:
-    case DelayProfile::kNone: return 0.0;
-    case DelayProfile::kConstantS: return d.constant_s();
-    case DelayProfile::kUniform: return d.uniform().max_s();
-    case DelayProfile::kNormal:
-      return d.normal().max_s() > 0.0 ? d.normal().max_s() : d.normal().mean_s() + 6.0 * d.normal().stddev_s();
-    case DelayProfile::kPareto:
-      if (d.pareto().max_s() > 0.0) return d.pareto().max_s();
-      return std::nullopt;
-    case DelayProfile::kMarkov: return std::max(d.markov().good().max_s(), d.markov().bad().max_s());
-    case DelayProfile::kTrace: return std::nullopt;
-  }
-  return std::nullopt;
+  // The grid's axis value: the profile's bound (job::delay_profile_bound_s), an untruncated
+  // normal's mean + 6 sd, and none for a trace (its rows name no bound).
+  if (d.has_normal() && !(d.normal().max_s() > 0.0)) return d.normal().mean_s() + 6.0 * d.normal().stddev_s();
+  if (d.has_trace()) return std::nullopt;
+  return job::delay_profile_bound_s(d);
 }
 
 std::vector<SweepConfiguration> expand_sweep(const SweepAxes& axes) {

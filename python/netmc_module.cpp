@@ -153,11 +153,17 @@ py::dict run_sim(const std::vector<std::string>& arguments, const std::string& t
   return out;
 }
 
-py::dict run_sweep(const std::vector<std::string>& arguments, bool keep_json) {
+// `netmc sweep`'s flags from `arguments` (the parsed values outlive the parser).
+cli::SweepFlags parse_sweep(const std::vector<std::string>& arguments) {
   CLI::App root("netmc");
   cli::SweepFlags flags;
   cli::add_sweep_flags(root, flags);
   parse(root, "sweep", arguments);
+  return flags;
+}
+
+py::dict run_sweep(const std::vector<std::string>& arguments, bool keep_json) {
+  const cli::SweepFlags flags = parse_sweep(arguments);
   std::ostringstream report;
   cli::SweepRunOptions options;
   options.keep_csv = true;
@@ -179,11 +185,7 @@ py::dict run_sweep(const std::vector<std::string>& arguments, bool keep_json) {
 }
 
 std::size_t sweep_size(const std::vector<std::string>& arguments) {
-  CLI::App root("netmc");
-  cli::SweepFlags flags;
-  cli::add_sweep_flags(root, flags);
-  parse(root, "sweep", arguments);
-  return cli::expand_sweep_flags(flags).size();
+  return cli::expand_sweep_flags(parse_sweep(arguments)).size();
 }
 
 std::string merge_parts(const std::vector<std::pair<std::string, std::string>>& parts) {

@@ -1,29 +1,23 @@
 """Writes netmc/__init__.pyi: the hand-written stubs (python/netmc/__init__.pyi) followed by
 sim(), sweep() and sweep_csv() with one keyword per flag the CLI registers, taken from the built
-module itself, so that an editor completes exactly the flags `netmc sim --help` lists."""
-import importlib.util
+package itself (its flags and its keyword rules), so that an editor completes exactly the
+keywords netmc.sim() takes.
+
+Usage: write_stubs.py PACKAGE_PARENT_DIR TEMPLATE OUT"""
 import sys
 
-core_path, template_path, out_path = sys.argv[1:4]
-spec = importlib.util.spec_from_file_location("_core", core_path)
-core = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(core)
-
-# As the package's own keyword rules (python/netmc/__init__.py, _NOT_KEYWORDS).
-not_keywords = {
-    "sim": {"json", "csv", "plot", "plot-format", "print-spec", "list-presets", "list-controllers",
-            "list-compensators", "plant-parameters", "fail-on-unstable"},
-    "sweep": {"csv", "json", "plot", "server", "shard"},
-}
+package_parent, template_path, out_path = sys.argv[1:4]
+sys.path.insert(0, package_parent)
+import netmc  # noqa: E402  (the package just built, not an installed one)
 
 
 def keywords(command):
     out = []
-    for flag in core.command_flags(command):
-        if flag["name"] in not_keywords[command]:
+    for name, flag in netmc._FLAGS[command].items():
+        if name in netmc._NOT_KEYWORDS[command]:
             continue
         kind = "bool" if not flag["takes_value"] else "_Values"
-        out.append(f"    {flag['name'].replace('-', '_')}: Optional[{kind}] = ...,")
+        out.append(f"    {name.replace('-', '_')}: Optional[{kind}] = ...,")
     return "\n".join(out)
 
 

@@ -49,7 +49,7 @@ struct DelayCompensation {
   bool predict_delay = true;     // "predictor": the command acts at the instant it was planned for
   std::size_t horizon = 1;       // commands per setpoint: 1, or "packets:horizon=N"
   double playout_s = 0.0;        // the least planned travel ("playout="); reports may plan longer
-  static constexpr double kMaxPlayoutS = 60.0;  // as the longest travel a report may plan
+  static constexpr double kMaxPlayoutS = 60.0;  // netsim's bound on a delay: the longest travel planned
   static constexpr std::size_t kMaxHorizon = 64;  // bounds a setpoint sample and a node's buffer
 };
 

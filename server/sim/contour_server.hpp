@@ -83,7 +83,7 @@ class ContourServer {
   control::AxisVector predicted_;
   control::GroupReference predicted_reference_;
   static constexpr std::size_t kDownlinkWindow = 256;  // the delays the longest is taken of
-  static constexpr double kMaxPlannedTravelS = 60.0;    // netsim's bound on a delay
+  static constexpr double kMaxPlannedTravelS = DelayCompensation::kMaxPlayoutS;  // netsim's bound on a delay
   std::vector<double> downlink_delays_s_;   // a ring of the newest kDownlinkWindow
   std::size_t downlink_next_ = 0;
   DelayStatistics feedback_age_;
