@@ -40,6 +40,11 @@ install(FILES ${PROJECT_SOURCE_DIR}/examples/controller_plugin/CMakeLists.txt
   ${PROJECT_SOURCE_DIR}/examples/controller_plugin/example_controller.cpp
   ${PROJECT_SOURCE_DIR}/examples/controller_plugin/README.md
   DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/controller_plugin COMPONENT dev)
+# The example FMU plant (built by examples/fmu_axis), with its source and README: netmc runs it
+# with no development package, so it goes with the programs.
+install(FILES ${PROJECT_BINARY_DIR}/examples/fmu_axis/ball_screw_axis.fmu
+  ${PROJECT_SOURCE_DIR}/examples/fmu_axis/ball_screw_axis.c ${PROJECT_SOURCE_DIR}/examples/fmu_axis/README.md
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/netmc/examples/fmu_axis COMPONENT runtime)
 set(NETMC_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/netmc)
 install(EXPORT netmcTargets NAMESPACE netmc:: DESTINATION ${NETMC_CMAKE_DIR} COMPONENT dev)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/netmcConfig.cmake.in

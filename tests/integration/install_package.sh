@@ -6,8 +6,9 @@
 # find_package, links netmc::control without Fast DDS or protobuf, and its ADRC loop settles.
 # The installed example drive plugin builds out of tree against the prefix (netmc::drive_plugin)
 # and exports the ABI's entry object and nothing else; the installed ABI header compiles as C and C++.
-# The example specs are one per preset and run. Then CPack's two .debs: netmc (programs, units,
-# examples; its dependencies Debian's runtime packages) and netmc-dev (libraries, headers), under /usr.
+# The example specs are one per preset and run, and so does the example FMU. Then CPack's two
+# .debs: netmc (programs, units, examples; its dependencies Debian's runtime packages) and
+# netmc-dev (libraries, headers), under /usr.
 # Usage: install_package.sh BUILD_DIR
 source "$(dirname "$0")/lib.sh" "$@"
 version=$(sed -n 's/^project(netmc VERSION \([0-9.]*\).*/\1/p' "$source_dir/CMakeLists.txt")
@@ -23,7 +24,7 @@ for file in include/netmc/control/axis/adrc_controller.hpp include/netmc/plant/p
   include/netmc/netsim/delay_model.hpp include/netmc/drive_plugin.h \
   share/netmc/examples/drive_plugin/example_drive.c share/netmc/examples/etc-netmc/server.env \
   share/netmc/examples/dds-profiles/udp_only.xml share/netmc/examples/drive-maps/default-map.json \
-  share/doc/netmc/LICENSE; do
+  share/netmc/examples/fmu_axis/ball_screw_axis.fmu share/doc/netmc/LICENSE; do
   [ -f "$prefix/$file" ] || { echo "FAIL: $file not installed"; exit 1; }
 done
 # The example specs: one per preset, each what `--spec` reads, giving the preset's first run.
@@ -35,6 +36,9 @@ presets=$("$prefix/bin/netmc" sim --list-presets)
 cmp -s "$tmp/spec.json" "$tmp/preset.json" ||
   { echo "FAIL: the installed seed001 spec does not run as the preset's first run"; diff "$tmp/spec.json" "$tmp/preset.json" | head; exit 1; }
 echo "example specs: $(echo $presets | wc -w), one per preset; seed001.json runs as netmc sim --preset seed001 --controller adrc"
+"$prefix/bin/netmc" sim -q --iterations 2 --plant "fmu:$prefix/share/netmc/examples/fmu_axis/ball_screw_axis.fmu:velocity=v" \
+  --json "$tmp/fmu.json" >/dev/null
+echo "the installed example FMU runs: netmc sim --plant fmu:PREFIX/share/netmc/examples/fmu_axis/ball_screw_axis.fmu"
 config=$(find "$prefix" -name netmcConfig.cmake)
 [ -n "$config" ] || { echo "FAIL: no netmcConfig.cmake"; exit 1; }
 units=$prefix/lib/systemd/system
@@ -108,7 +112,7 @@ done
 dpkg-deb -c "$deb" >"$tmp/contents"
 for file in ./usr/bin/netmc ./usr/bin/netmc-server ./usr/bin/netmc-axis ./usr/bin/netmc-drive-emulator \
   ./usr/lib/systemd/system/netmc-server.service \
-  ./usr/share/netmc/examples/specs/seed001.json; do
+  ./usr/share/netmc/examples/specs/seed001.json ./usr/share/netmc/examples/fmu_axis/ball_screw_axis.fmu; do
   grep -q " $file\$" "$tmp/contents" || { echo "FAIL: $file not in the .deb"; exit 1; }
 done
 ! grep -q "/usr/include/" "$tmp/contents" || { echo "FAIL: headers in the runtime package"; exit 1; }
