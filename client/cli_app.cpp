@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "client/cee_command.hpp"
+#include "client/commissioning_commands.hpp"
 #include "client/plot_command.hpp"
 #include "client/qft_command.hpp"
 #include "client/server_commands.hpp"
@@ -39,6 +40,7 @@ Exit codes: 0 done, 1 failed while running, 2 usage error or bad input.)");
   const auto run_watch = add_watch_command(app);
   const auto run_nodes = add_nodes_command(app);
   const auto run_reset = add_reset_command(app);
+  const auto run_commissioning = add_commissioning_commands(app);
   const auto run_status = add_status_command(app);
   const auto run_cancel = add_cancel_command(app);
   const auto run_jobs = add_jobs_command(app);
@@ -110,6 +112,9 @@ Exit code 1 when the node still reports the fault (one the drive cannot clear), 
     if (app.got_subcommand("jobs")) return run_jobs();
     if (app.got_subcommand("nodes")) return run_nodes();
     if (app.got_subcommand("reset")) return run_reset();
+    for (const char* name : {"enable", "disable", "quick-stop", "move", "jog"}) {
+      if (app.got_subcommand(name)) return run_commissioning();
+    }
     if (app.got_subcommand("cee")) return run_cee();
     if (app.got_subcommand("qft")) return run_qft();
     std::cout << app.help();

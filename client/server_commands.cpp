@@ -37,6 +37,8 @@ netmc::v1::Response expect_response(management::ManagementClient& client,
   return *response;
 }
 
+}  // namespace
+
 // One request (request id 1, filled in by `fill`) on a connection of its own, and its answer.
 netmc::v1::Response ask_server(const std::string& server, const std::function<void(netmc::v1::Request&)>& fill) {
   management::ManagementClient client(server, kServerConnectTimeout);
@@ -52,7 +54,6 @@ void add_server_option(CLI::App* command, std::string& server) {
   command->add_option("--server", server, "netmc-server management endpoint HOST:PORT")->envname("NETMC_SERVER");
 }
 
-}  // namespace
 
 namespace {
 
@@ -299,7 +300,10 @@ void print_nodes(const netmc::v1::NodesReply& reply) {
                node.held_by().empty() ? "" : " (held by " + node.held_by() + ")",
                node.server_name().empty() ? "" : " (obeys " + node.server_name() + ")");
     for (const auto& drive : node.drives()) {
-      fmt::print("  axis {:<12} {:<34} {:<22} error {}{}{}\n", drive.axis(), drive.drive(), drive.state(),
+      // A hardware axis's motion and position (a simulated one moves only in a job's time).
+      const bool hardware = drive.motion() != "off" || drive.position_m() != 0.0;
+      fmt::print("  axis {:<12} {:<34} {:<22}{} error {}{}{}\n", drive.axis(), drive.drive(), drive.state(),
+                 hardware ? fmt::format(" {} at {:.6f} m", drive.motion(), drive.position_m()) : "",
                  drive::describe_error_code(static_cast<std::uint16_t>(drive.error_code())),
                  drive.fault_latched() ? "  FAULT: " + drive.last_fault()
                  : drive.last_fault().empty() ? ""

@@ -31,6 +31,12 @@ std::function<int()> add_jobs_command(CLI::App& app);
 
 inline constexpr auto kServerConnectTimeout = std::chrono::milliseconds(3000);
 
+// One request (request id 1, filled in by `fill`) on a connection of its own, and its answer;
+// throws std::runtime_error naming the server for an error answer or none within 10 s.
+netmc::v1::Response ask_server(const std::string& server, const std::function<void(netmc::v1::Request&)>& fill);
+// --server HOST:PORT (or $NETMC_SERVER) of the commands that talk to a netmc-server.
+void add_server_option(CLI::App* command, std::string& server);
+
 // Submits one job and waits for its result; prints each iteration to stderr unless `quiet`;
 // `on_iteration` (optional) is called as each iteration arrives. Throws std::runtime_error
 // when the server fails the job or stops answering.

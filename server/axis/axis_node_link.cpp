@@ -181,6 +181,19 @@ bool AxisNodeLink::reset_request(const netmc::dds::JobControl& control) const {
   return control.kind() == netmc::dds::CONTROL_FAULT_RESET && hosts(control.axis());
 }
 
+bool AxisNodeLink::commissioning_request(const netmc::dds::JobControl& control) const {
+  switch (control.kind()) {
+    case netmc::dds::CONTROL_ENABLE:
+    case netmc::dds::CONTROL_DISABLE:
+    case netmc::dds::CONTROL_QUICK_STOP:
+    case netmc::dds::CONTROL_MOVE:
+    case netmc::dds::CONTROL_JOG:
+      return hosts(control.axis());
+    default:
+      return false;
+  }
+}
+
 bool AxisNodeLink::from_holder_of_job(const eprosima::fastrtps::rtps::GuidPrefix_t& sender,
                                       const netmc::dds::Setpoint& setpoint) {
   if (!authentic(sender, setpoint.server(), "setpoint", setpoint.axis())) return false;
@@ -243,6 +256,15 @@ void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::stri
       entry.fault_latched(faults_.count(axis) > 0);
       if (const auto last = last_faults_.find(axis); last != last_faults_.end()) entry.last_fault(last->second.substr(0, 255));
       entry.limits(drive.limits.describe().substr(0, 255));
+      entry.position_m(seen.position_m);
+      entry.velocity_m_s(seen.velocity_m_s);
+      const auto motion = motion_reports_.find(axis);
+      const AxisMotionReport moving = motion == motion_reports_.end() ? AxisMotionReport{} : motion->second;
+      entry.motion(moving.motion);
+      entry.following_error_m(moving.following_error_m);
+      entry.command_number(moving.command_number);
+      entry.command_refused(moving.command_refused);
+      entry.command_note(moving.command_note.substr(0, 255));
       status.drives().push_back(entry);
     }
   }
@@ -378,7 +400,23 @@ bool AxisNodeLink::faulted(const std::string& axis) const {
 void AxisNodeLink::report_drive(const std::string& axis, drive::PowerState state,
                                 const drive::DriveFeedback& feedback) {
   std::lock_guard lock(mutex_);
-  drive_reports_[axis] = {state, feedback.statusword, feedback.error_code};
+  drive_reports_[axis] = {state, feedback.statusword, feedback.error_code, feedback.position_m, feedback.velocity_m_s};
+}
+
+void AxisNodeLink::report_motion(const std::string& axis, const std::string& motion, double following_error_m) {
+  std::lock_guard lock(mutex_);
+  auto& report = motion_reports_[axis];
+  report.motion = motion;
+  report.following_error_m = following_error_m;
+}
+
+void AxisNodeLink::report_command(const std::string& axis, std::uint64_t number, bool refused,
+                                  const std::string& note) {
+  std::lock_guard lock(mutex_);
+  auto& report = motion_reports_[axis];
+  report.command_number = number;
+  report.command_refused = refused;
+  report.command_note = note;
 }
 
 bool AxisNodeLink::server_reads(const netmc::dds::JobControl& begin) const {

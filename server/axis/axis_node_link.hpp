@@ -56,6 +56,17 @@ struct AxisDriveReport {
   drive::PowerState state = drive::PowerState::not_ready_to_switch_on;
   std::uint16_t statusword = 0;
   std::uint16_t error_code = 0;
+  double position_m = 0.0;
+  double velocity_m_s = 0.0;
+};
+
+// What an axis does for the operator's view: its motion and the last commissioning command.
+struct AxisMotionReport {
+  std::string motion = "off";        // off | enabling | holding | moving | jogging | stopping | job
+  double following_error_m = 0.0;
+  std::uint64_t command_number = 0;  // the last commissioning command taken (JobControl.job_id)
+  bool command_refused = false;
+  std::string command_note;          // why it was refused, or how the motion ended otherwise
 };
 
 // The node's name or one of its axes belongs to a live node already.
@@ -148,8 +159,13 @@ class AxisNodeLink {
   std::vector<std::string> poll_fault_reset();
   // What the node's loop last saw of an axis's drive: the status carries it.
   void report_drive(const std::string& axis, drive::PowerState state, const drive::DriveFeedback& feedback);
+  void report_motion(const std::string& axis, const std::string& motion, double following_error_m);
+  void report_command(const std::string& axis, std::uint64_t number, bool refused, const std::string& note);
   // Whether `control` asks for a fault reset that this node takes (from a server it obeys).
   bool reset_request(const netmc::dds::JobControl& control) const;
+  // Whether `control` is an operator's commissioning command (enable, disable, quick stop, move,
+  // jog) for an axis of this node (from a server it obeys).
+  bool commissioning_request(const netmc::dds::JobControl& control) const;
 
   // The node's own clock (its --time-base).
   double now_s() const { return dds::time_base_now_s(config_.time_base); }
@@ -199,6 +215,7 @@ class AxisNodeLink {
   std::map<std::string, std::string> faults_;  // by axis: the reason
   std::map<std::string, std::string> last_faults_;  // by axis: the latest reason, kept after a reset
   std::map<std::string, AxisDriveReport> drive_reports_;  // by axis
+  std::map<std::string, AxisMotionReport> motion_reports_;  // by axis
   std::map<std::string, bool> obeyed_;  // --server-name's verdict by participant (bounded)
 
   std::atomic<std::uint64_t> forged_{0};

@@ -44,6 +44,7 @@ void LockstepAxisNode::publish_status() {
 
 void LockstepAxisNode::report_drive(const std::string& axis_name) {
   const JobAxis& axis = axes_.at(axis_name);
+  link_.report_motion(axis_name, axis.endpoint ? "job" : "off", 0.0);
   if (axis.endpoint) {
     link_.report_drive(axis_name, axis.endpoint->supervised().power_state(), axis.endpoint->supervised().reading());
     return;
@@ -83,6 +84,15 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
   if (link_.reset_request(control)) {
     link_.reset_faults({control.axis()});
     reset_faults({control.axis()});
+    return;
+  }
+  if (link_.commissioning_request(control)) {
+    // Lockstep axes are simulated in the job's virtual time: nothing stands still to be moved.
+    link_.report_command(control.axis(), control.job_id(), true,
+                         "node " + link_.config().node +
+                             " runs lockstep: its simulated axes take no commissioning (a realtime node's hardware "
+                             "drive does)");
+    publish_status();
     return;
   }
   if (control.kind() == netmc::dds::CONTROL_PREPARE_ITERATION) return;  // realtime servers only
@@ -136,6 +146,11 @@ void LockstepAxisNode::handle(const netmc::dds::JobControl& control) {
       return;
     case netmc::dds::CONTROL_PREPARE_ITERATION:
     case netmc::dds::CONTROL_FAULT_RESET:
+    case netmc::dds::CONTROL_ENABLE:
+    case netmc::dds::CONTROL_DISABLE:
+    case netmc::dds::CONTROL_QUICK_STOP:
+    case netmc::dds::CONTROL_MOVE:
+    case netmc::dds::CONTROL_JOG:
       return;
   }
   set_downlink_counters(feedback, *axis.endpoint);

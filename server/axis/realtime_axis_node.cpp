@@ -28,6 +28,17 @@ constexpr std::size_t kFeedbackTimes = 4096;
 // Setpoints in flight whose server send time is kept (tau_ca); more is not a loop but a flood.
 constexpr std::size_t kMaxSetpointsInFlight = 4096;
 
+const char* control_kind_name(netmc::dds::ControlKind kind) {
+  switch (kind) {
+    case netmc::dds::CONTROL_ENABLE: return "enable";
+    case netmc::dds::CONTROL_DISABLE: return "disable";
+    case netmc::dds::CONTROL_QUICK_STOP: return "quick stop";
+    case netmc::dds::CONTROL_MOVE: return "move";
+    case netmc::dds::CONTROL_JOG: return "jog";
+    default: return "job control";
+  }
+}
+
 bool ramping(drive::PowerState state) {
   return state == drive::PowerState::quick_stop_active || state == drive::PowerState::fault_reaction_active;
 }
@@ -41,6 +52,13 @@ RealtimeAxisNode::RealtimeAxisNode(dds::DdsContext& context, AxisNodeConfig conf
     OwnedAxis owned;
     owned.drive = link_.config().drives.at(axis).hardware;
     owned.applied_since_sample.reserve(netmc::dds::kMaxApplied);
+    if (owned.drive && !owned.drive->virtual_time()) {
+      const auto& positioning = link_.config().positioning;
+      CommissioningSettings settings;
+      settings.velocity_m_s = positioning.velocity_m_s;
+      settings.acceleration_m_s2 = positioning.acceleration_m_s2;
+      owned.commissioning.emplace(settings, link_.config().drives.at(axis).limits);
+    }
     axes_.emplace(axis, std::move(owned));
   }
 }
@@ -116,6 +134,7 @@ void RealtimeAxisNode::publish_status() {
 // What the node last saw of the axis's drive: the job's supervision while there is one, else a
 // read of the drive itself (hardware: done by poll; a simulated drive: its state).
 void RealtimeAxisNode::report_drive(const std::string& axis_name, OwnedAxis& axis) {
+  report_motion(axis_name, axis);
   drive::PowerState state = drive::PowerState::not_ready_to_switch_on;
   drive::DriveFeedback feedback;
   if (axis.endpoint) {
@@ -139,6 +158,19 @@ void RealtimeAxisNode::report_drive(const std::string& axis_name, OwnedAxis& axi
                          : axis.endpoint ? netmc::dds::NODE_RUNNING : netmc::dds::NODE_IDLE,
                          std::string("axis ") + axis_name + ": " + drive::power_state_name(state));
   }
+}
+
+void RealtimeAxisNode::report_motion(const std::string& axis_name, const OwnedAxis& axis) {
+  const bool commissioned = !axis.endpoint && axis.commissioning && axis.commissioning->active();
+  const char* motion = axis.endpoint                 ? "job"
+                       : commissioned                ? motion_name(axis.commissioning->motion())
+                       : axis.phase == Phase::stopping ? "stopping"
+                                                       : "off";
+  link_.report_motion(axis_name, motion, commissioned ? axis.commissioning->following_error_m() : 0.0);
+  link_.report_command(axis_name, axis.command_number, !axis.command_refusal.empty(),
+                       !axis.command_refusal.empty() ? axis.command_refusal
+                       : axis.commissioning          ? axis.commissioning->note()
+                                                     : std::string());
 }
 
 void RealtimeAxisNode::reset_faults(const std::vector<std::string>& axes) {
@@ -173,6 +205,10 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
     spdlog::info("axis {}: fault reset asked by server {}", control.axis(), control.server());
     link_.reset_faults({control.axis()});
     reset_faults({control.axis()});
+    return;
+  }
+  if (link_.commissioning_request(control)) {
+    commission(owned->first, axis, control);
     return;
   }
   if (starts_.waiting(control.axis())) {
@@ -236,11 +272,103 @@ void RealtimeAxisNode::handle(const netmc::dds::JobControl& control) {
       end_job(owned->first, axis, control);
       return;
     case netmc::dds::CONTROL_FAULT_RESET:
+    case netmc::dds::CONTROL_ENABLE:
+    case netmc::dds::CONTROL_DISABLE:
+    case netmc::dds::CONTROL_QUICK_STOP:
+    case netmc::dds::CONTROL_MOVE:
+    case netmc::dds::CONTROL_JOG:
       return;
   }
 }
 
+void RealtimeAxisNode::commission(const std::string& axis_name, OwnedAxis& axis,
+                                  const netmc::dds::JobControl& control) {
+  const auto kind = control.kind();
+  const bool motion = kind == netmc::dds::CONTROL_ENABLE || kind == netmc::dds::CONTROL_MOVE ||
+                      kind == netmc::dds::CONTROL_JOG;
+  std::string refusal;
+  if (kind == netmc::dds::CONTROL_QUICK_STOP && axis.endpoint) {
+    quick_stop_job(axis_name, axis);
+  } else if (!axis.commissioning) {
+    refusal = "axis " + axis_name + " has a simulated drive (" + link_.config().drives.at(axis_name).spec.describe() +
+              "): it moves only in a job's time; commissioning needs a hardware drive (modbus-tcp, plugin)";
+  } else if (axis.endpoint) {
+    refusal = "axis " + axis_name + " runs job " + std::to_string(axis.job_id) + " of server " + axis.server +
+              ": cancel it first (netmc cancel " + std::to_string(axis.job_id) + ")";
+  } else if (motion && link_.faulted(axis_name)) {
+    refusal = "axis " + axis_name + " is in fault: netmc reset " + link_.config().node + " first";
+  } else {
+    const double now = link_.now_s();
+    try {
+      if (axis.phase == Phase::stopping && kind != netmc::dds::CONTROL_QUICK_STOP) {
+        refusal = "axis " + axis_name + " is coming to rest after its job: ask again once it is off";
+      } else if (kind == netmc::dds::CONTROL_ENABLE) {
+        refusal = axis.commissioning->enable(now);
+      } else if (kind == netmc::dds::CONTROL_DISABLE) {
+        axis.commissioning->disable(*axis.drive, now);
+      } else if (kind == netmc::dds::CONTROL_QUICK_STOP) {
+        axis.commissioning->quick_stop(*axis.drive);
+        axis.phase = Phase::idle;
+        axis.move.reset();
+      } else if (kind == netmc::dds::CONTROL_MOVE) {
+        refusal = axis.commissioning->move(control.start_position_m(), control.speed_m_s(), now);
+      } else {
+        refusal = axis.commissioning->jog(control.speed_m_s(), now);
+      }
+    } catch (const drive::DriveError& error) {
+      refusal = error.what();
+      axis.commissioning->release();
+    }
+  }
+  const bool renewal = kind == netmc::dds::CONTROL_JOG && refusal.empty() && axis.command_refusal.empty() &&
+                       axis.commissioning && axis.commissioning->motion() == CommissioningAxis::Motion::jogging;
+  axis.command_number = control.job_id();
+  axis.command_refusal = refusal;
+  if (!refusal.empty()) {
+    spdlog::warn("axis {}: commissioning command of server {} refused: {}", axis_name, control.server(), refusal);
+  } else if (!renewal) {
+    spdlog::info("axis {}: {} by server {}", axis_name, control_kind_name(kind), control.server());
+  }
+  axis.next_poll = Clock::now();
+  report_drive(axis_name, axis);
+  publish_status();  // at once: the operator waits on the command number
+}
+
+void RealtimeAxisNode::quick_stop_job(const std::string& axis_name, OwnedAxis& axis) {
+  // The operator's quick stop ends the job on this axis, as the watchdog's does.
+  axis.endpoint->hold();
+  axis.holding = true;
+  try {
+    if (hardware(axis)) axis.drive->write_controlword(drive::controlword::quick_stop);
+  } catch (const drive::DriveError& error) {
+    spdlog::error("axis {}: quick stop not sent: {}", axis_name, error.what());
+  }
+  if (axis.phase == Phase::preparing || axis.phase == Phase::ready) axis.phase = Phase::idle;
+  axis.move.reset();
+  spdlog::warn("axis {} job {}: quick stop by the operator", axis_name, axis.job_id);
+  publish_job_event(axis_name, axis, axis.iteration, netmc::dds::AXIS_FAULT,
+                    "axis " + axis_name + ": quick stop by the operator (netmc quick-stop)");
+}
+
+void RealtimeAxisNode::publish_job_event(const std::string& axis_name, const OwnedAxis& axis, std::uint32_t iteration,
+                                         netmc::dds::AxisEventKind kind, const std::string& detail) {
+  netmc::dds::AxisEvent event;
+  event.axis(axis_name);
+  event.server(axis.server);
+  event.job_id(axis.job_id);
+  event.iteration(iteration);
+  event.kind(kind);
+  event.detail(detail.substr(0, 255));
+  link_.publish_event(event);
+}
+
 bool RealtimeAxisNode::start_job(OwnedAxis& axis, const netmc::dds::JobControl& control) {
+  if (axis.commissioning && axis.commissioning->moving()) {
+    refuse_start(axis, control,
+                 std::string("axis ") + control.axis() + " is " + motion_name(axis.commissioning->motion()) +
+                     " under the operator's commissioning: wait for it, or netmc disable it");
+    return false;
+  }
   if (!link_.linked_to_server(control)) {
     starts_.wait(control, Clock::now());
     return false;
@@ -254,6 +382,7 @@ bool RealtimeAxisNode::start_job(OwnedAxis& axis, const netmc::dds::JobControl& 
   axis.server = control.server();
   axis.drive = axis.endpoint->supervised().shared_drive();
   axis.phase = Phase::idle;
+  if (axis.commissioning) axis.commissioning->release();  // the job takes over an enabled axis
   return true;
 }
 
@@ -307,26 +436,13 @@ void RealtimeAxisNode::prepare(const std::string& axis_name, OwnedAxis& axis, co
 
 void RealtimeAxisNode::say_ready(const std::string& axis_name, OwnedAxis& axis) {
   if (axis.ready_for == 0) return;
-  netmc::dds::AxisEvent event;
-  event.axis(axis_name);
-  event.server(axis.server);
-  event.job_id(axis.job_id);
-  event.iteration(axis.ready_for);
-  event.kind(netmc::dds::AXIS_READY);
-  link_.publish_event(event);
+  publish_job_event(axis_name, axis, axis.ready_for, netmc::dds::AXIS_READY, "");
   axis.ready_for = 0;
 }
 
 void RealtimeAxisNode::fail_preparation(const std::string& axis_name, OwnedAxis& axis, const std::string& why) {
   spdlog::error("axis {}: {}", axis_name, why);
-  netmc::dds::AxisEvent event;
-  event.axis(axis_name);
-  event.server(axis.server);
-  event.job_id(axis.job_id);
-  event.iteration(axis.ready_for);
-  event.kind(netmc::dds::AXIS_FAULT);
-  event.detail(("axis " + axis_name + ": " + why).substr(0, 255));
-  link_.publish_event(event);
+  publish_job_event(axis_name, axis, axis.ready_for, netmc::dds::AXIS_FAULT, "axis " + axis_name + ": " + why);
   axis.ready_for = 0;
   axis.phase = Phase::stopping;
   axis.move.reset();
@@ -356,6 +472,12 @@ void RealtimeAxisNode::poll(const std::string& axis_name, OwnedAxis& axis, Clock
         axis.phase = Phase::idle;
         return;
       }
+    } else if (axis.commissioning) {
+      reading = axis.commissioning->poll(*axis.drive, link_.now_s());
+      report_motion(axis_name, axis);
+      if (axis.commissioning->active()) {
+        axis.next_poll = now + (axis.commissioning->motion() == CommissioningAxis::Motion::holding ? kHoldPoll : kMovePoll);
+      }
     } else {
       reading = axis.drive->read();
     }
@@ -364,6 +486,9 @@ void RealtimeAxisNode::poll(const std::string& axis_name, OwnedAxis& axis, Clock
   } catch (const drive::DriveError& error) {
     if (!axis.poll_failed) spdlog::warn("axis {}: {}", axis_name, error.what());
     axis.poll_failed = true;
+    if (axis.commissioning && axis.commissioning->active()) {
+      axis.commissioning->release(std::string("the drive did not answer: ") + error.what());
+    }
     link_.report_drive(axis_name, drive::PowerState::not_ready_to_switch_on, {});
     if (axis.phase == Phase::preparing) fail_preparation(axis_name, axis, error.what());
     return;
@@ -609,17 +734,10 @@ void RealtimeAxisNode::sample(const std::string& axis_name, OwnedAxis& axis, Clo
     // The iteration cannot go on with this axis stopped: the server ends the job (its other axes
     // stop as commanded) instead of running its loops on to a completion that means nothing, or
     // winding them up until a command trips an axis. Not latched: the next job may run.
-    netmc::dds::AxisEvent event;
-    event.axis(axis_name);
-    event.server(axis.server);
-    event.job_id(axis.job_id);
-    event.iteration(axis.iteration);
-    event.kind(netmc::dds::AXIS_FAULT);
-    event.detail(fmt::format("quick stop after {:.0f} ms without a setpoint, at cycle {} of iteration {} (the node's "
-                             "watchdog, netmc-axis --watchdog {} ms)",
-                             silent_ms, k, axis.iteration, watchdog_.count())
-                     .substr(0, 255));
-    link_.publish_event(event);
+    publish_job_event(axis_name, axis, axis.iteration, netmc::dds::AXIS_FAULT,
+                      fmt::format("quick stop after {:.0f} ms without a setpoint, at cycle {} of iteration {} (the "
+                                  "node's watchdog, netmc-axis --watchdog {} ms)",
+                                  silent_ms, k, axis.iteration, watchdog_.count()));
   }
   if (axis.endpoint->fault()) report_fault(axis_name, axis);  // before the sample
   set_sample(feedback, k, t, axis.endpoint->sample());

@@ -27,6 +27,7 @@
 
 #include "dds_types.h"
 #include "server/axis/axis_node_link.hpp"
+#include "server/axis/commissioning_axis.hpp"
 #include "server/axis/pending_job_starts.hpp"
 #include "server/drive/point_to_point_move.hpp"
 #include "server/sim/delay_statistics.hpp"
@@ -96,6 +97,10 @@ class RealtimeAxisNode {
     // Hardware: setpoints written as they arrived, reported with the next sample.
     std::vector<sim::AppliedSetpoint> applied_since_sample;
     drive::PowerState reported_state = drive::PowerState::not_ready_to_switch_on;
+    // Hardware without a job: the operator's enable, moves, jogs and stops (netmc enable, ...).
+    std::optional<CommissioningAxis> commissioning;
+    std::uint64_t command_number = 0;  // the last commissioning command taken or refused
+    std::string command_refusal;       // why it was refused ("" taken)
   };
 
   void handle(const netmc::dds::JobControl& control);
@@ -110,6 +115,15 @@ class RealtimeAxisNode {
   void begin(OwnedAxis& axis, const netmc::dds::JobControl& control);
   void end_job(const std::string& axis_name, OwnedAxis& axis, const netmc::dds::JobControl& control);
   void reset_faults(const std::vector<std::string>& axes);
+  // An operator's commissioning command (CONTROL_ENABLE ... CONTROL_JOG): taken, or refused with
+  // the reason in the node's status.
+  void commission(const std::string& axis_name, OwnedAxis& axis, const netmc::dds::JobControl& control);
+  void quick_stop_job(const std::string& axis_name, OwnedAxis& axis);
+  // An event of the axis's job to its server (detail at most 255 characters).
+  void publish_job_event(const std::string& axis_name, const OwnedAxis& axis, std::uint32_t iteration,
+                         netmc::dds::AxisEventKind kind, const std::string& detail);
+  // The axis's motion and following error for the node's status.
+  void report_motion(const std::string& axis_name, const OwnedAxis& axis);
   // The drive's fault reset (bit 7's edge) while one is pending (reset_until).
   void reset_drive(const std::string& axis_name, OwnedAxis& axis);
   void sample(const std::string& axis_name, OwnedAxis& axis, Clock::time_point now);

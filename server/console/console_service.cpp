@@ -6,6 +6,7 @@
 #include <atomic>
 #include <charconv>
 #include <cmath>
+#include <map>
 #include <set>
 #include <string_view>
 
@@ -406,6 +407,45 @@ HttpAnswer ConsoleService::cancel(std::uint64_t job_id, bool admin) {
   return json_answer(200, json{{"job", job_id}});
 }
 
+HttpAnswer ConsoleService::command_axis(const HttpRequest& request, bool admin) {
+  const json body = json::parse(request.body, nullptr, false);
+  if (body.is_discarded() || !body.is_object()) {
+    return error_answer(400, "body: expected a JSON object {\"node\": NAME, \"axis\": NAME, \"kind\": KIND, ...}");
+  }
+  static const std::map<std::string, netmc::v1::AxisCommand::Kind> kinds{
+      {"enable", netmc::v1::AxisCommand::ENABLE}, {"disable", netmc::v1::AxisCommand::DISABLE},
+      {"quick-stop", netmc::v1::AxisCommand::QUICK_STOP}, {"move", netmc::v1::AxisCommand::MOVE},
+      {"jog", netmc::v1::AxisCommand::JOG}};
+  netmc::v1::Request request_to_server;
+  auto& command = *request_to_server.mutable_axis_command();
+  for (const auto& [key, value] : body.items()) {
+    if (key == "node" || key == "axis") {
+      if (!value.is_string() || value.get<std::string>().size() > 64) {
+        return error_answer(400, key + ": expected a name of at most 64 characters");
+      }
+      (key == "node" ? command.mutable_node() : command.mutable_axis())->assign(value.get<std::string>());
+    } else if (key == "kind") {
+      const auto kind = value.is_string() ? kinds.find(value.get<std::string>()) : kinds.end();
+      if (kind == kinds.end()) return error_answer(400, "kind: expected enable, disable, quick-stop, move or jog");
+      command.set_kind(kind->second);
+    } else if (key == "target_m" || key == "speed_m_s") {
+      if (!value.is_number() || !std::isfinite(value.get<double>())) {
+        return error_answer(400, key + ": expected a finite number");
+      }
+      key == "target_m" ? command.set_target_m(value.get<double>()) : command.set_speed_m_s(value.get<double>());
+    } else {
+      return error_answer(400, "body: unknown field '" + key.substr(0, 40) +
+                                   "' (expected node, axis, kind, target_m, speed_m_s)");
+    }
+  }
+  if (command.node().empty() || command.kind() == netmc::v1::AxisCommand::KIND_UNSPECIFIED) {
+    return error_answer(400, "body: node and kind are required");
+  }
+  const auto answer = ask(request_to_server, admin);
+  if (answer.has_error()) return error_answer(409, answer.error().message());
+  return json_answer(200, json{{"command_number", answer.axis_command().command_number()}});
+}
+
 std::optional<bool> ConsoleService::change_permitted(const HttpRequest& request, const char* action,
                                                      const std::function<void(HttpAnswer)>& answer) const {
   // A console whose server asks for no token changes nothing: anyone who reaches it could.
@@ -445,6 +485,13 @@ void ConsoleService::handle(const HttpRequest& request, std::function<void(HttpA
     const auto admin = change_permitted(request, "starting a job", answer);
     if (!admin) return;
     submit(request, *admin, std::move(answer));
+    return;
+  }
+  if (target == "/api/axis-command") {
+    if (!only(post)) return;
+    const auto admin = change_permitted(request, "commanding an axis", answer);
+    if (!admin) return;
+    answer(command_axis(request, *admin));
     return;
   }
   constexpr std::string_view kJobs = "/api/jobs/";

@@ -118,6 +118,8 @@ class ConsoleService {
   HttpAnswer job_answer(std::uint64_t job_id);
   void submit(const HttpRequest& request, bool admin, std::function<void(HttpAnswer)> answer);
   HttpAnswer cancel(std::uint64_t job_id, bool admin);
+  // POST /api/axis-command: an operator's commissioning command, as netmc enable ... jog send it.
+  HttpAnswer command_axis(const HttpRequest& request, bool admin);
   // The token's verdict: nullopt: refused (answer 401); else admin or not.
   std::optional<bool> authorized(const HttpRequest& request) const;
   // authorized(), answering the refusal itself: 403 on a console without a token (read-only),

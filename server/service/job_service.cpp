@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <utility>
 
@@ -37,7 +38,10 @@ JobService::JobService(dds::DdsContext& context, NodeDirectory& nodes, ClockTrac
       options_(std::move(options)),
       registry_(options_),
       executor_(context, nodes, clocks, registry_, options_),
-      scheduler_(registry_, executor_, options_) {}
+      scheduler_(registry_, executor_, options_),
+      next_command_number_(static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::milliseconds>(
+                                                          std::chrono::system_clock::now().time_since_epoch())
+                                                          .count())) {}
 
 JobService::~JobService() {
   scheduler_.stop();
@@ -129,10 +133,7 @@ void JobService::handle(const std::shared_ptr<management::Peer>& session,
                                      "named to the client by NETMC_TOKEN_FILE)"));
         return;
       }
-      std::optional<NodeRecord> target;
-      for (auto& record : nodes_.nodes()) {
-        if (record.status.node() == reset.node()) target = std::move(record);
-      }
+      const std::optional<NodeRecord> target = find_node(reset.node());
       if (!target) {
         session->send(error_response(request.request_id(), "reset: no node '" + reset.node().substr(0, 64) +
                                                                "' (netmc nodes lists the nodes this server sees)"));
@@ -167,6 +168,9 @@ void JobService::handle(const std::shared_ptr<management::Peer>& session,
       fill_node_info(*target, std::chrono::steady_clock::now(), *reply.add_nodes());
       break;
     }
+    case netmc::v1::Request::kAxisCommand:
+      command_axis(session, request, admin);
+      return;
     case netmc::v1::Request::kJobs:
       try {
         *response.mutable_jobs() = registry_.list_jobs(request.jobs());
@@ -177,13 +181,95 @@ void JobService::handle(const std::shared_ptr<management::Peer>& session,
       break;
     case netmc::v1::Request::KIND_NOT_SET:
       session->send(error_response(request.request_id(),
-                                   "request: empty (expected submit, cancel, status, watch, nodes, reset or jobs)"));
+                                   "request: empty (expected submit, cancel, status, watch, nodes, reset, jobs or axis_command)"));
       return;
   }
   session->send(response);
 }
 
 ServiceTotals JobService::totals() const { return registry_.totals(); }
+
+std::optional<NodeRecord> JobService::find_node(const std::string& name) const {
+  for (auto& record : nodes_.nodes()) {
+    if (record.status.node() == name) return std::move(record);
+  }
+  return std::nullopt;
+}
+
+void JobService::command_axis(const std::shared_ptr<management::Peer>& session, const netmc::v1::Request& request,
+                              bool admin) {
+  const auto& command = request.axis_command();
+  const auto refuse = [&](const std::string& why) { session->send(error_response(request.request_id(), why)); };
+  using Kind = netmc::v1::AxisCommand;
+  const char* verb = command.kind() == Kind::ENABLE       ? "enable"
+                     : command.kind() == Kind::DISABLE    ? "disable"
+                     : command.kind() == Kind::QUICK_STOP ? "quick-stop"
+                     : command.kind() == Kind::MOVE       ? "move"
+                     : command.kind() == Kind::JOG        ? "jog"
+                                                          : nullptr;
+  if (!verb) return refuse("axis_command.kind: expected ENABLE, DISABLE, QUICK_STOP, MOVE or JOG");
+  const std::string what = std::string(verb) + ": ";
+  if (!admin && options_.admin_token_configured) {
+    return refuse(what + "needs the admin token (the file of netmc-server --admin-token-file, named to the client by "
+                         "NETMC_TOKEN_FILE)");
+  }
+  if (!std::isfinite(command.target_m()) || !std::isfinite(command.speed_m_s())) {
+    return refuse(what + "the target and the speed must be finite numbers (m, m/s)");
+  }
+  const std::optional<NodeRecord> target = find_node(command.node());
+  if (!target) {
+    return refuse(what + "no node '" + command.node().substr(0, 64) + "' (netmc nodes lists the nodes this server sees)");
+  }
+  const auto& hosted = target->status.axes();
+  std::vector<std::string> axes;
+  if (command.axis().empty()) {
+    if (command.kind() == Kind::MOVE || command.kind() == Kind::JOG) return refuse(what + "names one axis");
+    axes.assign(hosted.begin(), hosted.end());
+  } else if (std::find(hosted.begin(), hosted.end(), command.axis()) == hosted.end()) {
+    return refuse(what + "node " + command.node() + " hosts no axis '" + command.axis().substr(0, 64) + "'");
+  } else {
+    axes.push_back(command.axis());
+  }
+  // A job's axes move only by its commands; its operator stops them (quick stop) or cancels it.
+  if (command.kind() != Kind::QUICK_STOP) {
+    for (const auto& hold : target->status.holds()) {
+      if (std::find(axes.begin(), axes.end(), hold.axis()) == axes.end()) continue;
+      const bool ours = hold.server() == context_.identity();
+      return refuse(what + "axis " + hold.axis() + " is held by job " + std::to_string(hold.job_id()) + " of " +
+                    (ours ? "this server: cancel it first (netmc cancel " + std::to_string(hold.job_id()) + ")"
+                          : "server " + hold.server() + ": it moves only by that job's commands"));
+    }
+  }
+  const std::uint64_t number = next_command_number_.fetch_add(1);
+  try {
+    for (const auto& axis : axes) {
+      netmc::dds::JobControl control;
+      control.axis(axis);
+      control.server(context_.identity());
+      control.job_id(number);
+      control.kind(command.kind() == Kind::ENABLE       ? netmc::dds::CONTROL_ENABLE
+                   : command.kind() == Kind::DISABLE    ? netmc::dds::CONTROL_DISABLE
+                   : command.kind() == Kind::QUICK_STOP ? netmc::dds::CONTROL_QUICK_STOP
+                   : command.kind() == Kind::MOVE       ? netmc::dds::CONTROL_MOVE
+                                                        : netmc::dds::CONTROL_JOG);
+      control.start_position_m(command.target_m());
+      control.speed_m_s(command.speed_m_s());
+      dds::write_checked(executor_.control(), &control);
+    }
+  } catch (const std::exception& error) {
+    return refuse(what + error.what());
+  }
+  if (command.kind() != Kind::JOG) {
+    spdlog::info("{} of node {} ({}) sent{}", verb, command.node(), command.axis().empty() ? "every axis" : command.axis(),
+                 admin ? " by an admin" : "");
+  }
+  netmc::v1::Response response;
+  response.set_request_id(request.request_id());
+  auto& sent = *response.mutable_axis_command();
+  sent.set_command_number(number);
+  fill_node_info(*target, std::chrono::steady_clock::now(), *sent.mutable_node());
+  session->send(response);
+}
 
 void JobService::fill_node_info(const NodeRecord& record, std::chrono::steady_clock::time_point now,
                                 netmc::v1::NodeInfo& info) const {
@@ -220,6 +306,13 @@ void JobService::fill_node_info(const NodeRecord& record, std::chrono::steady_cl
     entry.set_fault_latched(drive.fault_latched());
     entry.set_last_fault(drive.last_fault());
     entry.set_limits(drive.limits());
+    entry.set_motion(drive.motion());
+    entry.set_position_m(drive.position_m());
+    entry.set_velocity_m_s(drive.velocity_m_s());
+    entry.set_following_error_m(drive.following_error_m());
+    entry.set_command_number(drive.command_number());
+    entry.set_command_note(drive.command_note());
+    entry.set_command_refused(drive.command_refused());
     const auto events = nodes_.axis_events(record.status.node(), drive.axis());
     entry.set_trips(events.trips);
     entry.set_quick_stops(events.quick_stops);

@@ -5,8 +5,12 @@
 // with DDS readers of its own (in its axes' partitions, so no job sees another's samples); a
 // job waits in the queue only while one of its axes is busy, or the running-job limit is reached.
 
+#include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "idl/management.pb.h"
 #include "server/dds/dds_context.hpp"
@@ -43,6 +47,10 @@ class JobService {
   // netmc nodes's view of one node (also the answer to a reset).
   void fill_node_info(const NodeRecord& record, std::chrono::steady_clock::time_point now,
                       netmc::v1::NodeInfo& info) const;
+  std::optional<NodeRecord> find_node(const std::string& name) const;
+  // An operator's commissioning command (netmc enable, disable, quick-stop, move, jog): checked,
+  // numbered and sent to the node; the reply carries its number, which the node's status echoes.
+  void command_axis(const std::shared_ptr<management::Peer>& session, const netmc::v1::Request& request, bool admin);
 
   dds::DdsContext& context_;
   NodeDirectory& nodes_;
@@ -51,6 +59,9 @@ class JobService {
   JobRegistry registry_;
   JobExecutor executor_;
   JobScheduler scheduler_;  // last: its threads use the parts above, and it stops first
+  // Commissioning command numbers: from the clock, so that a restarted server does not repeat
+  // the numbers a node echoes from before.
+  std::atomic<std::uint64_t> next_command_number_;
 };
 
 }  // namespace netmc::service

@@ -15,6 +15,9 @@
 #                     host's network (eth0) finds no axis.
 #   management-tls    docs/operations/hostile-networks-and-clients.md: `netmc nodes` over TLS with
 #                     the token; a client without the CA is refused.
+#   commissioning     docs/operations/commissioning.md: one emulated Modbus axis enabled, moved
+#                     +10 mm and back (read back within 1 um), jogged and quick-stopped; the same
+#                     without the admin token, and a move outside the window, are refused by name.
 # Usage: doc_recipes.sh BUILD_DIR RECIPE
 source "$(dirname "$0")/lib.sh" "$@"
 recipe=${2:?usage: doc_recipes.sh BUILD_DIR RECIPE}
@@ -101,6 +104,30 @@ case $recipe in
     [ "$plain_exit" -ne 0 ] && grep -q 'speaks TLS only' "$tmp/plain.txt" ||
       { cat "$tmp/plain.txt"; lab_fail "a client without NETMC_TLS_CA was not told to set it"; }
     echo "a client without the CA: $(head -n 1 "$tmp/plain.txt")" ;;
+  commissioning)
+    for expected in 'axis x: holding, Operation enabled at 0.055000 m' \
+        'axis x: holding, Operation enabled at 0.065000 m.*target 0.065000 m' \
+        'axis x: holding, Operation enabled at 0.055000 m.*target 0.055000 m' \
+        'axis x: off, \(Quick stop active\|Switch on disabled\)'; do
+      grep -q "$expected" "$last_log" || lab_fail "the commissioning printed no line like '$expected'"
+    done
+    # The jog: 1 s at -5 mm/s, and the ramps (10 ms each way at 0.5 m/s^2): about 5 mm.
+    jogged=$(sed -n '4p' <(grep '^axis x: ' "$last_log") | sed 's/.* at \([0-9.]*\) m,.*/\1/')
+    awk -v p="$jogged" 'BEGIN { d = (0.055 - p) * 1e3; printf "jogged %.3f mm\n", d; exit (d > 4 && d < 7) ? 0 : 1 }' ||
+      lab_fail "the jog did not move the axis about 5 mm: it ended at $jogged m"
+    refused_exit=0
+    lab_exec axis -- build/client/netmc enable bench x >"$tmp/no_token.txt" 2>&1 || refused_exit=$?
+    [ "$refused_exit" -ne 0 ] && grep -q 'enable: needs the admin token' "$tmp/no_token.txt" ||
+      { cat "$tmp/no_token.txt"; lab_fail "an enable without the admin token was not refused"; }
+    echo "without the token: $(head -n 1 "$tmp/no_token.txt")"
+    lab_exec axis -- env NETMC_TOKEN_FILE=admin.token build/client/netmc enable bench x >/dev/null
+    refused_exit=0
+    lab_exec axis -- env NETMC_TOKEN_FILE=admin.token build/client/netmc move bench x --to 200mm \
+      >"$tmp/outside.txt" 2>&1 || refused_exit=$?
+    [ "$refused_exit" -ne 0 ] && grep -q "refused: the target 0.2 m is outside the axis's window \[0, 0.12\] m" "$tmp/outside.txt" ||
+      { cat "$tmp/outside.txt"; lab_fail "a move outside the window was not refused by name"; }
+    echo "outside the window: $(head -n 1 "$tmp/outside.txt")"
+    lab_exec axis -- env NETMC_TOKEN_FILE=admin.token build/client/netmc disable bench x ;;
 esac
 for name in "${started[@]}"; do lab_stop "$name"; done
 echo "recipe $recipe runs as written"

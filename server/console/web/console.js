@@ -409,6 +409,139 @@
     $('nodes-empty').hidden = seen.size > 0;
   }
 
+  // ---------------------------------------------------------------- axes (commissioning)
+
+  const axisRows = new Map();  // "node/axis" -> <tr>; made once, so a held jog button stays put
+
+  async function commandAxis(node, axis, kind, extra) {
+    const payload = Object.assign({ node: node, axis: axis, kind: kind }, extra || {});
+    try {
+      const { status, body } = await postJson('/api/axis-command', payload);
+      if (status === 200) {
+        if (kind !== 'jog') showMessage(kind + ' of ' + node + ' ' + axis + ' sent', 'ok', status);
+      } else {
+        showMessage(refusal(status, body, kind + ' of ' + node + ' ' + axis), 'error', status);
+      }
+      return status;
+    } catch (e) {
+      showMessage(kind + ' of ' + node + ' ' + axis + ' failed: ' + e.message, 'error', 'network');
+      return 0;
+    }
+  }
+
+  function axisButton(label, action, onClick) {
+    const b = el('button', 'axis-' + action, label);
+    b.type = 'button';
+    b.setAttribute('data-action', action);
+    if (onClick) b.addEventListener('click', onClick);
+    return b;
+  }
+
+  // Held down: a jog command every 100 ms (the node stops a jog 0.5 s after the last), released: stop.
+  function jogButton(node, axis, sign, speedInput) {
+    const b = axisButton(sign > 0 ? 'jog +' : 'jog \u2212', sign > 0 ? 'jog-plus' : 'jog-minus');
+    let timer = null;
+    const speed = () => sign * Math.abs(num(parseFloat(speedInput.value), 5)) / 1e3;
+    const start = (event) => {
+      event.preventDefault();
+      if (timer !== null) return;
+      commandAxis(node, axis, 'jog', { speed_m_s: speed() }).then((status) => {
+        if (status !== 200) stop();
+      });
+      timer = setInterval(() => commandAxis(node, axis, 'jog', { speed_m_s: speed() }), 100);
+    };
+    const stop = () => {
+      if (timer === null) return;
+      clearInterval(timer);
+      timer = null;
+      commandAxis(node, axis, 'jog', { speed_m_s: 0 });
+    };
+    b.addEventListener('pointerdown', start);
+    for (const type of ['pointerup', 'pointerleave', 'pointercancel']) b.addEventListener(type, stop);
+    return b;
+  }
+
+  function axisRow(node, axis) {
+    const key = node + '/' + axis;
+    let tr = axisRows.get(key);
+    if (tr) return tr;
+    tr = el('tr', 'axis');
+    tr.setAttribute('data-node', node);
+    tr.setAttribute('data-axis', axis);
+    for (const cls of ['node', 'axis', 'state', 'motion', 'position', 'velocity', 'following-error', 'controls']) {
+      tr.appendChild(el('td', cls));
+    }
+    const controls = tr.cells[7];
+    controls.appendChild(axisButton('enable', 'enable', () => commandAxis(node, axis, 'enable')));
+    controls.appendChild(axisButton('disable', 'disable', () => commandAxis(node, axis, 'disable')));
+    controls.appendChild(axisButton('quick stop', 'quick-stop', () => commandAxis(node, axis, 'quick-stop')));
+    const target = el('input', 'move-target');
+    target.type = 'number';
+    target.step = 'any';
+    target.title = 'target position [mm]';
+    target.setAttribute('aria-label', 'target position of ' + axis + ' [mm]');
+    controls.appendChild(target);
+    controls.appendChild(axisButton('move to', 'move', () => {
+      const mm = parseFloat(target.value);
+      if (!Number.isFinite(mm)) {
+        showMessage('move of ' + node + ' ' + axis + ': give the target in mm', 'error', 'input');
+        return;
+      }
+      commandAxis(node, axis, 'move', { target_m: mm / 1e3 });
+    }));
+    const jogSpeed = el('input', 'jog-speed');
+    jogSpeed.type = 'number';
+    jogSpeed.min = '0';
+    jogSpeed.step = 'any';
+    jogSpeed.value = '5';
+    jogSpeed.title = 'jog speed [mm/s]';
+    jogSpeed.setAttribute('aria-label', 'jog speed of ' + axis + ' [mm/s]');
+    controls.appendChild(jogButton(node, axis, -1, jogSpeed));
+    controls.appendChild(jogButton(node, axis, +1, jogSpeed));
+    controls.appendChild(jogSpeed);
+    controls.appendChild(el('span', 'command-note'));
+    axisRows.set(key, tr);
+    return tr;
+  }
+
+  function updateAxes(nodes) {
+    const tbody = $('axes').tBodies[0];
+    const seen = new Set();
+    let previous = null;
+    const sorted = nodes.slice().sort((a, b) => idOf(a.node).localeCompare(idOf(b.node)));
+    for (const n of sorted) {
+      const node = idOf(n.node);
+      for (const d of n.drives || []) {
+        const axis = idOf(d.axis);
+        const key = node + '/' + axis;
+        if (!node || !axis || seen.has(key)) continue;
+        seen.add(key);
+        const tr = axisRow(node, axis);
+        const c = tr.cells;
+        setText(c[0], node);
+        setText(c[1], axis);
+        setText(c[2], d.state || '');
+        setText(c[3], d.motion || 'off');
+        setText(c[4], fixed(num(d.position_m) * 1e3, 3));
+        setText(c[5], fixed(num(d.velocity_m_s) * 1e3, 3));
+        setText(c[6], fixed(num(d.following_error_m) * 1e6, 1));
+        const note = d.command_note ? (d.command_refused ? 'refused: ' : '') + d.command_note : '';
+        setText(c[7].lastChild, note);
+        setAttr(tr, 'data-motion', d.motion || 'off');
+        const anchor = previous ? previous.nextSibling : tbody.firstChild;
+        if (tr !== anchor) tbody.insertBefore(tr, anchor);
+        previous = tr;
+      }
+    }
+    for (const [key, tr] of axisRows) {
+      if (!seen.has(key)) {
+        tr.remove();
+        axisRows.delete(key);
+      }
+    }
+    $('axes-empty').hidden = seen.size > 0;
+  }
+
   // ---------------------------------------------------------------- jobs table
 
   const jobRows = new Map();   // job id -> <tr>
@@ -1241,6 +1374,7 @@
       const state = pendingState;
       pendingState = null;
       updateNodes(Array.isArray(state.nodes) ? state.nodes : []);
+      updateAxes(Array.isArray(state.nodes) ? state.nodes : []);
       updateJobs(Array.isArray(state.jobs) ? state.jobs : []);
     }
     drawContour();
