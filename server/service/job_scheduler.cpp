@@ -7,12 +7,26 @@
 #include <algorithm>
 #include <chrono>
 
+#include "plant/plant_catalog.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/realtime/realtime_scheduling.hpp"
 #include "server/service/error_response.hpp"
 #include "server/service/job_admission.hpp"
 
 namespace netmc::service {
+namespace {
+
+// The unit of a job's commands, for the console's plots: a catalogue plant's input unit. A file
+// plant's (FMU, plugin) is the axis nodes' to read: the server reads no file a job names.
+std::string command_unit(const std::string& plant_name) {
+  try {
+    return plant::is_file_plant(plant_name) ? "input" : plant::plant_input_unit(plant_name);
+  } catch (const std::invalid_argument&) {
+    return "input";
+  }
+}
+
+}  // namespace
 
 JobScheduler::JobScheduler(JobRegistry& registry, JobExecutor& executor, const JobServiceOptions& options)
     : registry_(registry), executor_(executor), options_(options) {
@@ -157,6 +171,7 @@ void JobScheduler::admit(const Submission& submission) {
   job->status.set_state("queued");
   job->status.set_iterations_total(spec.iterations());
   job->status.set_label(label);
+  job->status.set_command_unit(command_unit(spec.plant()));
   session->hold();  // not idle while its job is queued or running
   // Acknowledge before the worker can see the job, so "accepted" precedes its updates.
   netmc::v1::Response response;

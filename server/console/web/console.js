@@ -1096,7 +1096,9 @@
   const AXIS_NAMES = ['x', 'y', 'z'];
   function commandLabels(width) {
     const labels = ['t'];
-    for (let i = 0; i < width; ++i) labels.push('u ' + (i < AXIS_NAMES.length ? AXIS_NAMES[i] : String(i)));
+    const status = jobStatus.get(live.job);
+    const unit = status && status.command_unit ? ' [' + status.command_unit + ']' : '';
+    for (let i = 0; i < width; ++i) labels.push('u ' + (i < AXIS_NAMES.length ? AXIS_NAMES[i] : String(i)) + unit);
     return labels;
   }
 
