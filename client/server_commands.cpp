@@ -376,7 +376,9 @@ std::function<int()> add_reset_command(CLI::App& app) {
         for (const auto& drive : node->drives()) {
           const bool asked = flags->axes.empty() ||
                              std::find(flags->axes.begin(), flags->axes.end(), drive.axis()) != flags->axes.end();
-          if (asked && (drive.fault_latched() || drive.state() == "Fault")) still.push_back(drive.axis());
+          if (asked && (drive.fault_latched() || drive.state() == "Fault" || drive.state() == "no answer")) {
+            still.push_back(drive.axis());
+          }
         }
       }
       if (node && still.empty()) {
@@ -389,8 +391,8 @@ std::function<int()> add_reset_command(CLI::App& app) {
         std::string names;
         for (const auto& axis : still) names += (names.empty() ? "" : ", ") + axis;
         throw std::runtime_error(node ? "reset: node " + flags->node + " still reports axis " + names +
-                                            " in fault after " + std::to_string(flags->wait_ms) +
-                                            " ms (a fault the drive cannot clear: see netmc nodes)"
+                                            " in fault after " + std::to_string(flags->wait_ms) + " ms: " +
+                                            node->health() + ""
                                       : "reset: node " + flags->node + " is no longer listed by the server");
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(100));

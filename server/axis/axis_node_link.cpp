@@ -59,7 +59,7 @@ AxisNodeLink::AxisNodeLink(dds::DdsContext& context, AxisNodeConfig config)
     drive_reports_[axis] = {drive::PowerState::switch_on_disabled,
                             static_cast<std::uint16_t>(drive::statusword_bits(drive::PowerState::switch_on_disabled) |
                                                        drive::statusword::remote),
-                            0};
+                            0, 0.0, 0.0, ""};
   }
   control_reader_ = context.reader(context.topic<netmc::dds::JobControlPubSubType>(dds::kJobControlTopic),
                                    dds::Delivery::control, {}, &control_intake_);
@@ -236,8 +236,24 @@ void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::stri
     std::lock_guard lock(mutex_);
     std::string faults;
     for (const auto& [axis, reason] : faults_) faults += (faults.empty() ? "" : "; ") + axis + ": " + reason;
-    status.health(faults.empty() ? health : netmc::dds::NODE_FAULT);
+    // A drive that does not answer, or stands in Fault, cannot start a job: the node says so,
+    // naming the drive and the cause.
+    std::string drives;
+    for (const auto& axis : config_.axes) {
+      const auto report = drive_reports_.find(axis);
+      if (report == drive_reports_.end() || faults_.count(axis)) continue;
+      std::string problem = report->second.unreachable;
+      if (problem.empty() && report->second.state == drive::PowerState::fault) {
+        problem = "in Fault (error " + drive::describe_error_code(report->second.error_code) + ")";
+      }
+      if (problem.empty()) continue;
+      const auto& drive = config_.drives.at(axis);
+      drives += (drives.empty() ? "" : "; ") + axis + ": " +
+                (drive.hardware ? drive.hardware->describe() : drive.spec.describe()) + ": " + problem;
+    }
+    status.health(faults.empty() && drives.empty() ? health : netmc::dds::NODE_FAULT);
     std::string said = faults.empty() ? detail : faults + "; reset with netmc reset (or SIGUSR1 on the axis's host)";
+    if (!drives.empty()) said = faults.empty() ? drives : said + "; " + drives;
     if (const auto forged = forged_.load(); forged > 0) said += "; " + std::to_string(forged) + " forged samples dropped";
     if (const auto dropped = setpoint_intake_.dropped(); dropped > 0) {
       said += "; " + std::to_string(dropped) + " setpoints of no job here dropped";
@@ -250,7 +266,8 @@ void AxisNodeLink::publish_status(netmc::dds::NodeHealth health, const std::stri
       entry.drive((drive.hardware ? drive.hardware->describe() : drive.spec.describe()).substr(0, 128));
       const auto report = drive_reports_.find(axis);
       const AxisDriveReport seen = report == drive_reports_.end() ? AxisDriveReport{} : report->second;
-      entry.state(drive::power_state_name(seen.state));
+      // The drive's own state, or that it did not answer (not a state it was not read in).
+      entry.state(seen.unreachable.empty() ? drive::power_state_name(seen.state) : "no answer");
       entry.statusword(seen.statusword);
       entry.error_code(seen.error_code);
       entry.fault_latched(faults_.count(axis) > 0);
@@ -400,7 +417,25 @@ bool AxisNodeLink::faulted(const std::string& axis) const {
 void AxisNodeLink::report_drive(const std::string& axis, drive::PowerState state,
                                 const drive::DriveFeedback& feedback) {
   std::lock_guard lock(mutex_);
-  drive_reports_[axis] = {state, feedback.statusword, feedback.error_code, feedback.position_m, feedback.velocity_m_s};
+  drive_reports_[axis] = {state, feedback.statusword, feedback.error_code, feedback.position_m, feedback.velocity_m_s, ""};
+}
+
+void AxisNodeLink::report_unreachable(const std::string& axis, const std::string& cause) {
+  std::lock_guard lock(mutex_);
+  auto& report = drive_reports_[axis];
+  report = AxisDriveReport{};
+  report.unreachable = cause.empty() ? "no answer" : cause;
+}
+
+std::string AxisNodeLink::drive_problem(const std::string& axis) const {
+  std::lock_guard lock(mutex_);
+  const auto report = drive_reports_.find(axis);
+  if (report == drive_reports_.end()) return "";
+  if (!report->second.unreachable.empty()) return report->second.unreachable;
+  if (report->second.state == drive::PowerState::fault && !faults_.count(axis)) {
+    return "the drive is in Fault (error " + drive::describe_error_code(report->second.error_code) + ")";
+  }
+  return "";
 }
 
 void AxisNodeLink::report_motion(const std::string& axis, const std::string& motion, double following_error_m) {
@@ -442,6 +477,11 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
       throw std::runtime_error("axis " + begin.axis() + " is in fault (" + it->second +
                                "); its operator resets it: netmc reset " + config_.node + " (or SIGUSR1 on its host)");
     }
+  }
+  if (const std::string problem = drive_problem(begin.axis()); !problem.empty()) {
+    throw std::runtime_error("axis " + begin.axis() + " is in fault: its drive " +
+                             config_.drives.at(begin.axis()).hardware->describe() + ": " + problem +
+                             "; netmc reset " + config_.node + " once the cause is gone");
   }
   // The server must read this node's feedback before the first sample leaves, and its setpoints
   // must reach this node before the first one is due.

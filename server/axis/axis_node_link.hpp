@@ -58,6 +58,7 @@ struct AxisDriveReport {
   std::uint16_t error_code = 0;
   double position_m = 0.0;
   double velocity_m_s = 0.0;
+  std::string unreachable;  // why the last exchange with the drive failed ("" it answered)
 };
 
 // What an axis does for the operator's view: its motion and the last commissioning command.
@@ -154,11 +155,16 @@ class AxisNodeLink {
   std::vector<std::string> reset_faults(const std::vector<std::string>& axes = {});
   bool faulted() const;
   bool faulted(const std::string& axis) const;
+  // Why the axis cannot start a job now, beside a latched fault: its drive does not answer or is
+  // in Fault ("" none).
+  std::string drive_problem(const std::string& axis) const;
   // Called by the node's loop: the axes whose faults the operator reset by signal
   // (fault_reset_requested), all of them, or none.
   std::vector<std::string> poll_fault_reset();
   // What the node's loop last saw of an axis's drive: the status carries it.
   void report_drive(const std::string& axis, drive::PowerState state, const drive::DriveFeedback& feedback);
+  // The drive did not answer (`cause`): the node is in fault, naming it, until it answers again.
+  void report_unreachable(const std::string& axis, const std::string& cause);
   void report_motion(const std::string& axis, const std::string& motion, double following_error_m);
   void report_command(const std::string& axis, std::uint64_t number, bool refused, const std::string& note);
   // Whether `control` asks for a fault reset that this node takes (from a server it obeys).

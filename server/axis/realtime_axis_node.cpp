@@ -481,15 +481,21 @@ void RealtimeAxisNode::poll(const std::string& axis_name, OwnedAxis& axis, Clock
     } else {
       reading = axis.drive->read();
     }
-    axis.poll_failed = false;
+    if (axis.poll_failed) {
+      spdlog::info("axis {}: its drive answers again", axis_name);
+      axis.poll_failed = false;
+      axis.reported_state = drive::PowerState::not_ready_to_switch_on;  // the state it shows next is news
+    }
     reset_drive(axis_name, axis);
   } catch (const drive::DriveError& error) {
-    if (!axis.poll_failed) spdlog::warn("axis {}: {}", axis_name, error.what());
+    const bool first = !axis.poll_failed;
+    if (first) spdlog::warn("axis {}: {}", axis_name, error.what());
     axis.poll_failed = true;
     if (axis.commissioning && axis.commissioning->active()) {
       axis.commissioning->release(std::string("the drive did not answer: ") + error.what());
     }
-    link_.report_drive(axis_name, drive::PowerState::not_ready_to_switch_on, {});
+    link_.report_unreachable(axis_name, error.what());
+    if (first) publish_status();  // at once: a server deciding on this axis must know
     if (axis.phase == Phase::preparing) fail_preparation(axis_name, axis, error.what());
     return;
   }

@@ -95,6 +95,14 @@ std::vector<NodeRecord> JobExecutor::find_nodes(const Job& job, const JobChannel
                        "' but the job needs '" + job.spec.plant() + "': start the node with netmc-axis --plant " +
                        job.spec.plant());
     }
+    // A drive in fault, or that does not answer, cannot start: said now, naming the node's reason.
+    for (const auto& drive : node->status.drives()) {
+      if (drive.axis() != axis) continue;
+      if (drive.fault_latched() || drive.state() == "Fault" || drive.state() == "no answer") {
+        throw JobFailure("axis " + axis + " is in fault: node " + node->status.node() + " reports " +
+                         node->status.detail() + "; netmc reset " + node->status.node() + " once the cause is gone");
+      }
+    }
     // Another server's hold: a server that died (or this one before its restart) holds the axis
     // until the node's hold lease ends (10 s without contact); a live one keeps it.
     const auto foreign_hold = [&]() -> const netmc::dds::AxisHold* {
