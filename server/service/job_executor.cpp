@@ -200,14 +200,7 @@ void JobExecutor::run(const std::shared_ptr<Job>& shared_job) {
       iteration.set_job_id(job.id);
       iteration.set_total_iterations(job.spec.iterations());
       *iteration.mutable_metrics() = metrics;
-      // Watchers and the client hear of the iteration once it is kept (written, with a store).
-      auto deliver = [this, shared_job, update]() mutable { registry_.deliver_iteration(shared_job, std::move(update)); };
-      if (options_.store) {
-        options_.store->iteration(job.id, static_cast<std::uint32_t>(record.metrics.iteration),
-                                  metrics.SerializeAsString(), std::move(deliver));
-      } else {
-        deliver();
-      }
+      registry_.report_iteration(shared_job, std::move(update));
       registry_.count_iteration(job, record.metrics, job_cycles);
       spdlog::info("job {} iteration {}/{}: e_max {:.4f} mm, e_sum {:.3f} mm{}", job.id, record.metrics.iteration,
                    job.spec.iterations(), record.metrics.e_max_m * 1e3, record.metrics.e_sum_m * 1e3,
@@ -261,16 +254,7 @@ void JobExecutor::run(const std::shared_ptr<Job>& shared_job) {
   done.set_state(state);
   const auto level = state == "failed" ? spdlog::level::err : spdlog::level::info;
   spdlog::log(level, "job {} {}{}", job.id, state, done.error().empty() ? "" : ": " + done.error());
-  conclude(shared_job, std::move(done));
-}
-
-void JobExecutor::conclude(const std::shared_ptr<Job>& job, netmc::v1::JobFinished finished) {
-  auto tell = [this, job, finished]() { registry_.tell_end(job, finished); };
-  if (options_.store) {
-    options_.store->ended(job->id, finished.state(), finished.error(), finished.SerializeAsString(), std::move(tell));
-  } else {
-    tell();
-  }
+  registry_.conclude(shared_job, done);
 }
 
 }  // namespace netmc::service

@@ -42,8 +42,6 @@ class JobExecutor {
     eprosima::fastdds::dds::DataReader* events = nullptr;
   };
   const AxisReaders& axis_readers(bool realtime, const std::string& axis);
-  // The job has ended with `finished`: kept in the store, then its status, watchers and client.
-  void conclude(const std::shared_ptr<Job>& job, netmc::v1::JobFinished finished);
 
   dds::DdsContext& context_;
   NodeDirectory& nodes_;

@@ -103,27 +103,54 @@ void JobRegistry::end_watches(Job& job, const netmc::v1::JobFinished& finished) 
   job.iterations.clear();  // the end carries them
 }
 
-void JobRegistry::end_unrun(Job& job, const std::string& reason) {
-  job.spec = netmc::v1::JobSpec();
-  job.status.set_state("cancelled");
-  job.status.set_error(reason);
-  job.status.clear_waiting_for();
-  job.ended_unix_s = unix_now_s();
+void JobRegistry::end_unrun(const std::shared_ptr<Job>& job, const std::string& reason) {
+  job->spec = netmc::v1::JobSpec();
   netmc::v1::JobFinished finished;
-  finished.set_job_id(job.id);
+  finished.set_job_id(job->id);
   finished.set_state("cancelled");
   finished.set_error(reason);
-  job.finished = finished;
-  end_watches(job, finished);
-  ended_.push_back(job.id);
-  if (const auto submitter = job.session.lock()) {
+  // Its status at once (the answer to netmc cancel shows it); its followers once it is kept.
+  record_end(*job, finished);
+  ended_.push_back(job->id);
+  auto tell = [this, job, finished](bool locked) {
+    {
+      std::unique_lock lock(mutex_, std::defer_lock);
+      if (!locked) lock.lock();
+      job->status.clear_waiting_for();
+      end_watches(*job, finished);
+    }
     netmc::v1::Response end;
-    end.set_request_id(job.request_id);
     *end.mutable_finished() = finished;
-    submitter->send(end);
-    submitter->release();
+    reply(*job, end);
+    if (const auto submitter = job->session.lock()) submitter->release();
+  };
+  if (!options_.store) {
+    tell(true);
+    return;
   }
-  if (options_.store) options_.store->ended(job.id, "cancelled", reason, finished.SerializeAsString());
+  keep_end(*job, finished, [tell] { tell(false); });
+}
+
+void JobRegistry::keep_end(Job& job, const netmc::v1::JobFinished& finished, std::function<void()> tell) {
+  // Cleared once it is kept and told (at once, unless the store cannot be written). A cancelled
+  // queued job's status shows its reason unless the store is known to fail.
+  const auto problem = options_.store->problem();
+  if (job.status.state() != finished.state() || !problem.empty()) {
+    job.status.set_waiting_for("its end (" + finished.state() + ") to be written to the job store" +
+                               (problem.empty() ? std::string()
+                                                : ", which cannot be written now (" + problem + "); tried again until it is"));
+  }
+  options_.store->ended(job.id, finished.state(), finished.error(), finished.SerializeAsString(), std::move(tell));
+}
+
+void JobRegistry::report_iteration(const std::shared_ptr<Job>& job, netmc::v1::Response update) {
+  if (!options_.store) {
+    deliver_iteration(job, std::move(update));
+    return;
+  }
+  const auto& metrics = update.iteration().metrics();
+  options_.store->iteration(job->id, metrics.iteration(), metrics.SerializeAsString(),
+                            [this, job, update]() mutable { deliver_iteration(job, std::move(update)); });
 }
 
 void JobRegistry::deliver_iteration(const std::shared_ptr<Job>& job, netmc::v1::Response update) {
@@ -179,13 +206,27 @@ std::string JobRegistry::cancel_reason(const Job& job) const {
   return job.cancel_reason;
 }
 
+void JobRegistry::conclude(const std::shared_ptr<Job>& job, const netmc::v1::JobFinished& finished) {
+  if (!options_.store) {
+    tell_end(job, finished);
+    return;
+  }
+  std::lock_guard lock(mutex_);
+  keep_end(*job, finished, [this, job, finished] { tell_end(job, finished); });
+}
+
+void JobRegistry::record_end(Job& job, const netmc::v1::JobFinished& finished) {
+  job.status.set_state(finished.state());
+  job.status.set_error(finished.error());
+  job.status.clear_waiting_for();
+  job.ended_unix_s = unix_now_s();
+  job.finished = finished;
+}
+
 void JobRegistry::tell_end(const std::shared_ptr<Job>& job, const netmc::v1::JobFinished& finished) {
   {
     std::lock_guard lock(mutex_);
-    job->status.set_state(finished.state());
-    job->status.set_error(finished.error());
-    job->ended_unix_s = unix_now_s();
-    job->finished = finished;
+    record_end(*job, finished);
     end_watches(*job, finished);
   }
   netmc::v1::Response end;

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -103,15 +104,16 @@ class JobRegistry {
   // Under mutex(): a new watcher of `job` gets its status and the iterations so far (and its end,
   // if it has ended); refused with a reason if the job has too many watchers already.
   void start_watch(Job& job, const std::shared_ptr<management::Peer>& session, std::uint64_t request_id);
-  // Under mutex(): a queued job ends without running (cancelled, its client gone): its
-  // watchers, its submitter and the store hear of it.
-  void end_unrun(Job& job, const std::string& reason);
+  // Under mutex(): a queued job ends without running (cancelled, its client gone): its status at
+  // once; kept in the store, then its watchers and submitter hear of it.
+  void end_unrun(const std::shared_ptr<Job>& job, const std::string& reason);
 
   // The submitter of `job` gets `response` (no lock needed: the session is thread-safe).
   static void reply(const Job& job, netmc::v1::Response response);
   // Each of the following takes mutex().
-  // A running job's iteration, kept: to its watchers, then its submitter.
-  void deliver_iteration(const std::shared_ptr<Job>& job, netmc::v1::Response update);
+  // A running job's iteration: kept in the store (with one), then to its watchers and its
+  // submitter (on the store's writer; while the store cannot be written they wait).
+  void report_iteration(const std::shared_ptr<Job>& job, netmc::v1::Response update);
   // A running job's iteration counted in the totals; `job_cycles` its cycles per iteration.
   void count_iteration(Job& job, const sim::IterationMetrics& metrics, std::uint64_t job_cycles);
   void count_forged_samples(std::uint64_t forged);
@@ -120,8 +122,11 @@ class JobRegistry {
   // What a running job waits for before its first cycle, for `netmc status` ("" none).
   void set_waiting_for(Job& job, const std::string& what);
   std::string cancel_reason(const Job& job) const;
-  // The job has ended with `finished`: its status, its watchers, then its submitter.
-  void tell_end(const std::shared_ptr<Job>& job, const netmc::v1::JobFinished& finished);
+  // The job has ended with `finished`: kept in the store (with one), then its status, its
+  // watchers and its submitter. While the store cannot be written they wait (the write is tried
+  // again until it is kept) and the job's status says what it waits for: no one is told of an end
+  // a restart would not find.
+  void conclude(const std::shared_ptr<Job>& job, const netmc::v1::JobFinished& finished);
   ServiceTotals totals() const;
   // netmc jobs: the history, from the store (or from memory without one).
   netmc::v1::JobList list_jobs(const netmc::v1::ListJobs& filter) const;
@@ -131,8 +136,17 @@ class JobRegistry {
   std::vector<std::shared_ptr<Job>> restore_from_store();
 
  private:
+  // A running job's iteration, kept: to its watchers, then its submitter.
+  void deliver_iteration(const std::shared_ptr<Job>& job, netmc::v1::Response update);
   // Under mutex(): `job` has ended with `finished`: each watcher gets it and is let go.
   void end_watches(Job& job, const netmc::v1::JobFinished& finished);
+  // Under mutex(), with a store: `finished` is written, then `tell` runs (on the store's writer,
+  // without the lock). Meanwhile the job's status says what it waits for (and why, if known).
+  void keep_end(Job& job, const netmc::v1::JobFinished& finished, std::function<void()> tell);
+  // Under mutex(): `job` has ended with `finished`: its status.
+  void record_end(Job& job, const netmc::v1::JobFinished& finished);
+  // Takes mutex(): record_end(), its watchers, then its submitter hear of it.
+  void tell_end(const std::shared_ptr<Job>& job, const netmc::v1::JobFinished& finished);
 
   const JobServiceOptions& options_;
   mutable std::mutex mutex_;

@@ -81,7 +81,7 @@ bool JobScheduler::drop_if_queued(const std::shared_ptr<Job>& job) {
   const auto queued = std::find(queue_.begin(), queue_.end(), job);
   if (queued == queue_.end()) return false;
   queue_.erase(queued);
-  end_queued(*job, job->cancel_reason);
+  end_queued(job, job->cancel_reason);
   spdlog::info("job {} cancelled while queued", job->id);
   wake_.notify_all();
   return true;
@@ -191,12 +191,12 @@ void JobScheduler::tend_jobs() {
     return !job.keep_after_disconnect && (!session || !session->open());
   };
   for (auto it = queue_.begin(); it != queue_.end();) {
-    Job& job = **it;
-    if (!gone(job)) {
+    const auto job = *it;
+    if (!gone(*job)) {
       ++it;
       continue;
     }
-    spdlog::info("job {} dropped from the queue: its client disconnected", job.id);
+    spdlog::info("job {} dropped from the queue: its client disconnected", job->id);
     end_queued(job, "its client disconnected");
     it = queue_.erase(it);
   }
@@ -210,8 +210,8 @@ void JobScheduler::tend_jobs() {
   registry_.forget_beyond_history();
 }
 
-void JobScheduler::end_queued(Job& job, const std::string& reason) {
-  queued_spec_bytes_ -= job.spec_bytes;
+void JobScheduler::end_queued(const std::shared_ptr<Job>& job, const std::string& reason) {
+  queued_spec_bytes_ -= job->spec_bytes;
   registry_.end_unrun(job, reason);
 }
 

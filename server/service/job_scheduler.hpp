@@ -59,7 +59,7 @@ class JobScheduler {
   // forgets the oldest ended jobs beyond the history.
   void tend_jobs();
   // Under the registry's lock: a queued job ends without running.
-  void end_queued(Job& job, const std::string& reason);
+  void end_queued(const std::shared_ptr<Job>& job, const std::string& reason);
   // On the job's thread, after it ran: frees its axes and hands its thread to be joined.
   void finish(const std::shared_ptr<Job>& job);
 

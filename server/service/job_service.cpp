@@ -45,8 +45,10 @@ JobService::JobService(dds::DdsContext& context, NodeDirectory& nodes, ClockTrac
 
 JobService::~JobService() {
   scheduler_.stop();
-  // The writes of the jobs' ends, and what follows them (answers to clients), refer to this.
-  if (options_.store) options_.store->flush();
+  // The writes of the jobs' ends, and what follows them (answers to clients), refer to this. A
+  // store that cannot be written is waited for briefly: its ends were told to no one, and a
+  // restart reads those jobs as it last kept them.
+  if (options_.store) options_.store->flush(std::chrono::seconds(3));
 }
 
 void JobService::handle(const std::shared_ptr<management::Peer>& session,

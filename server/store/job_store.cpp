@@ -6,6 +6,7 @@
 
 #include <cerrno>
 
+#include <algorithm>
 #include <atomic>
 #include <future>
 #include <system_error>
@@ -273,27 +274,24 @@ std::uint64_t JobStore::accept(const StoredJob& job, std::chrono::milliseconds t
       outcome->set_exception(std::make_exception_ptr(StoreError("abandoned")));
       return;
     }
-    try {
-      Transaction transaction(db);
-      Statement(db,
-                "INSERT INTO jobs(label, owner, spec, iterations_total, keep_after_disconnect, state, accepted_unix_s) "
-                "VALUES(?, ?, ?, ?, ?, 'queued', ?)")
-          .bind_text(1, job.label)
-          .bind_text(2, job.owner)
-          .bind(3, job.spec)
-          .bind(4, static_cast<std::int64_t>(job.iterations_total))
-          .bind(5, static_cast<std::int64_t>(job.keep_after_disconnect ? 1 : 0))
-          .bind(6, unix_now_s())
-          .run();
-      const auto id = static_cast<std::uint64_t>(sqlite3_last_insert_rowid(db));
-      add_event(db, id, "queued", "accepted from " + job.owner);
-      transaction.commit();
-      outcome->set_value(id);
-    } catch (...) {
-      outcome->set_exception(std::current_exception());
-      throw;
-    }
+    Transaction transaction(db);
+    Statement(db,
+              "INSERT INTO jobs(label, owner, spec, iterations_total, keep_after_disconnect, state, accepted_unix_s) "
+              "VALUES(?, ?, ?, ?, ?, 'queued', ?)")
+        .bind_text(1, job.label)
+        .bind_text(2, job.owner)
+        .bind(3, job.spec)
+        .bind(4, static_cast<std::int64_t>(job.iterations_total))
+        .bind(5, static_cast<std::int64_t>(job.keep_after_disconnect ? 1 : 0))
+        .bind(6, unix_now_s())
+        .run();
+    const auto id = static_cast<std::uint64_t>(sqlite3_last_insert_rowid(db));
+    add_event(db, id, "queued", "accepted from " + job.owner);
+    transaction.commit();
+    outcome->set_value(id);
   };
+  // Not tried again: the client waits for its answer, and a store that cannot be written accepts no job.
+  write.refuse = [outcome](const std::string& why) { outcome->set_exception(std::make_exception_ptr(StoreError(why))); };
   if (!enqueue(std::move(write))) {
     throw StoreError("job store " + file_.string() + ": too many writes waiting (" + std::to_string(max_pending_) +
                      "); the disk is too slow or stuck");
@@ -345,6 +343,7 @@ void JobStore::ended(std::uint64_t id, const std::string& state, const std::stri
   Write write;
   write.what = "the end of job " + std::to_string(id);
   write.then = std::move(then);
+  write.droppable = false;  // at most one per job, and no job is accepted while writes wait
   write.apply = [this, id, state, error, finished = std::move(finished)](sqlite3* db) {
     {
       Transaction transaction(db);
@@ -358,7 +357,13 @@ void JobStore::ended(std::uint64_t id, const std::string& state, const std::stri
       add_event(db, id, state, error);
       transaction.commit();
     }
-    prune(db);
+    // The end is kept; retention failing (a full disk) must not write it again.
+    try {
+      prune(db);
+    } catch (const std::exception& problem) {
+      spdlog::warn("job store {}: old jobs not deleted: {} (tried again after the next end)", file_.string(),
+                   problem.what());
+    }
   };
   enqueue(std::move(write));
 }
@@ -487,73 +492,142 @@ std::uint64_t JobStore::failed_writes() const {
   return failed_;
 }
 
-void JobStore::flush() {
+bool JobStore::flush(std::chrono::milliseconds patience) {
   std::unique_lock lock(mutex_);
-  idle_.wait(lock, [this] { return pending_.empty() && !busy_; });
+  const auto idle = [this] { return pending_.empty() && !busy_; };
+  const bool forever = patience == std::chrono::milliseconds::max();
+  const auto deadline = forever ? std::chrono::steady_clock::time_point::max() : std::chrono::steady_clock::now() + patience;
+  while (!idle()) {
+    if (!failing_ || forever) {
+      // A slow disk is waited for; a failing one only until the patience is over.
+      idle_.wait(lock, [&] { return idle() || (failing_ && !forever); });
+      continue;
+    }
+    if (idle_.wait_until(lock, deadline, idle)) break;
+    if (!failing_) continue;  // written again, but not all yet
+    giving_up_ = true;
+    give_up("not kept within " + std::to_string(patience.count()) + " ms");
+    wake_.notify_all();
+    // The attempt under way ends, given up too if it fails.
+    idle_.wait(lock, [this] { return !busy_; });
+    giving_up_ = false;
+    return false;
+  }
+  return true;
 }
 
 bool JobStore::enqueue(Write write) {
   {
     std::lock_guard lock(mutex_);
-    if (pending_.size() >= max_pending_) {
-      ++dropped_;
-      problem_ = "too many writes waiting (" + std::to_string(max_pending_) + "): " + write.what + " was dropped";
-      // The first of a run of drops, then every thousandth: a stuck disk must not also flood the log.
-      if (dropped_ % 1000 == 1) spdlog::error("job store {}: {} ({} dropped so far)", file_.string(), problem_, dropped_);
-    } else {
+    if (pending_.size() < max_pending_ || !write.droppable) {
       pending_.push_back(std::move(write));
+      retry_now_ = true;  // a write failing at the head is tried again now
       wake_.notify_one();
       return true;
     }
+    ++dropped_;
+    const std::string dropped = "too many writes waiting (" + std::to_string(max_pending_) + "): " + write.what + " was dropped";
+    if (!failing_) problem_ = dropped;
+    // The first of a run of drops, then every thousandth: a stuck disk must not also flood the log.
+    if (dropped_ % 1000 == 1) spdlog::error("job store {}: {} ({} dropped so far)", file_.string(), dropped, dropped_);
   }
   // Dropped: its follower still runs, so no client waits for a write that never comes.
   if (write.then) write.then();
   return false;
 }
 
+namespace {
+// A failed write is tried again after these, doubling (and at once when a new write comes).
+constexpr std::chrono::milliseconds kFirstRetry{100};
+constexpr std::chrono::milliseconds kLongestRetry{2000};
+}  // namespace
+
 void JobStore::write_loop() {
   std::unique_lock lock(mutex_);
+  std::chrono::milliseconds backoff = kFirstRetry;
   while (true) {
     wake_.wait(lock, [this] { return stopping_ || !pending_.empty(); });
     if (pending_.empty()) return;  // stopping, every queued write done
     Write write = std::move(pending_.front());
     pending_.pop_front();
     busy_ = true;
+    retry_now_ = false;
     lock.unlock();
-    apply(write);
+    std::string failure;
+    try {
+      write.apply(writer_db_);
+    } catch (const std::exception& problem) {
+      failure = problem.what();
+    }
     lock.lock();
+    if (failure.empty()) {
+      if (failing_) {
+        spdlog::info("job store {}: written again after {:.1f} s ({} failed attempts); {} writes waiting", file_.string(),
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - failing_since_).count(),
+                     attempts_failed_in_a_row_, pending_.size());
+        failing_ = false;
+        attempts_failed_in_a_row_ = 0;
+        backoff = kFirstRetry;
+      }
+      problem_.clear();
+      lock.unlock();
+      if (write.then) write.then();
+      lock.lock();
+      busy_ = false;
+      if (pending_.empty()) idle_.notify_all();
+      continue;
+    }
+    ++failed_;
+    note_failure(write, failure);
+    if (write.refuse) {
+      write.refuse(failure);
+    } else {
+      pending_.push_front(std::move(write));  // first again: what follows it waits, in order
+    }
     busy_ = false;
-    if (pending_.empty()) idle_.notify_all();
+    if (stopping_ || giving_up_) give_up(stopping_ ? "the store closes" : "flush gave up");
+    idle_.notify_all();
+    if (stopping_ || giving_up_) continue;
+    wake_.wait_for(lock, backoff, [this] { return stopping_ || giving_up_ || retry_now_; });
+    backoff = std::min(backoff * 2, kLongestRetry);
   }
 }
 
-void JobStore::apply(Write& write) {
-  std::string failure;
-  try {
-    write.apply(writer_db_);
-  } catch (const std::exception& problem) {
-    failure = problem.what();
+void JobStore::note_failure(const Write& write, const std::string& failure) {
+  const std::size_t waiting = pending_.size() + 1;  // with this one, when it is tried again
+  // Each failure once (again only when its cause changes), and its recovery: not every attempt.
+  if (write.refuse && (!failing_ || failure != problem_)) {
+    spdlog::error("job store {}: {} not accepted: {}", file_.string(), write.what, failure);
+  } else if (!failing_ || failure != problem_) {
+    spdlog::error("job store {}: {} not written: {}; {} writes wait and are tried again until they are kept (no job "
+                  "is accepted meanwhile)",
+                  file_.string(), write.what, failure, waiting);
   }
-  std::uint64_t failures_in_a_row = 0;
-  {
-    std::lock_guard lock(mutex_);
-    if (failure.empty()) {
-      problem_.clear();
-      failures_in_a_row = std::exchange(failures_in_a_row_, 0);
+  if (!failing_) failing_since_ = std::chrono::steady_clock::now();
+  failing_ = true;
+  problem_ = failure;
+  ++attempts_failed_in_a_row_;
+  // New jobs behind the failing write: their clients hear why now, not after accept's timeout.
+  for (auto it = pending_.begin(); it != pending_.end();) {
+    if (it->refuse) {
+      it->refuse(failure);
+      it = pending_.erase(it);
     } else {
-      ++failed_;
-      problem_ = failure;
-      failures_in_a_row = ++failures_in_a_row_;
+      ++it;
     }
   }
-  // The first failure of a run, then every thousandth: a full disk must not also flood the log.
-  if (!failure.empty() && failures_in_a_row % 1000 == 1) {
-    spdlog::error("job store {}: {} not written: {} ({} writes failed in a row)", file_.string(), write.what, failure,
-                  failures_in_a_row);
-  } else if (failure.empty() && failures_in_a_row > 0) {
-    spdlog::info("job store {}: written again after {} failed writes", file_.string(), failures_in_a_row);
+}
+
+void JobStore::give_up(const std::string& why) {
+  if (pending_.empty()) return;
+  spdlog::error("job store {}: {} writes given up ({}): {}; no one was told of them, and their jobs read as the store "
+                "last kept them (a running one: 'server restarted' at the next start)",
+                file_.string(), pending_.size(), why, problem_.empty() ? "not written" : problem_);
+  for (auto& write : pending_) {
+    if (write.refuse) write.refuse(problem_.empty() ? why : problem_);
   }
-  if (write.then) write.then();
+  dropped_ += pending_.size();
+  pending_.clear();
 }
 
 void JobStore::prune(sqlite3* db) {

@@ -7,6 +7,9 @@
 // One writer thread does every write, in the order asked, off the callers' threads: a job's
 // control loop only queues (a bounded queue; a full one drops the write and says so) and is told
 // nothing of the disk. Only accept() waits for its write: a job is accepted once it is on disk.
+// A write that fails (a full disk) is not lost: it stays first in the queue and is tried again,
+// with backoff and at each new write, until it lands; what follows it waits, so a job's writes
+// land in order and each `then` runs only once its write is kept.
 // The store keeps messages as opaque bytes (serialized protobuf): it knows no job semantics.
 
 #include <chrono>
@@ -97,8 +100,9 @@ class JobStore {
   // StoreError (disk full, read-only store, no answer within `timeout`): the job is not accepted.
   std::uint64_t accept(const StoredJob& job, std::chrono::milliseconds timeout = std::chrono::seconds(10));
 
-  // Queued writes; each `then` (optional) runs on the writer thread once the write is done or
-  // has failed (its failure is logged): so a client is told of an iteration only once it is kept.
+  // Queued writes; each `then` (optional) runs on the writer thread once the write is kept (a
+  // failed one is tried again until it is): so a client is told only of what is kept. A job's
+  // end is never dropped from a full queue (an iteration may be: its `then` runs at once).
   using Then = std::function<void()>;
   void started(std::uint64_t id, std::string result_header, Then then = {});
   void iteration(std::uint64_t id, std::uint32_t iteration, std::string metrics, Then then = {});
@@ -118,23 +122,31 @@ class JobStore {
   // (PRAGMA integrity_check). Returns the jobs in it. Throws StoreError naming the file.
   static std::size_t backup(const std::filesystem::path& directory, const std::filesystem::path& file);
 
-  // Empty while writes succeed; otherwise why the latest one failed.
+  // Empty while writes succeed; otherwise why the latest one failed (writes wait to be tried again).
   std::string problem() const;
-  // Writes dropped because the queue was full, and writes that failed.
+  // Writes dropped because the queue was full, and failed attempts to write.
   std::uint64_t dropped_writes() const;
   std::uint64_t failed_writes() const;
-  // Blocks until every write queued so far is done (tests, shutdown).
-  void flush();
+  // Blocks until every write queued so far is kept. While the store cannot be written it waits at
+  // most `patience`, then gives up the writes still waiting (logged; their `then` never runs: no
+  // one is told of what was not kept) and returns false.
+  bool flush(std::chrono::milliseconds patience = std::chrono::milliseconds::max());
 
  private:
   struct Write {
     std::function<void(sqlite3*)> apply;
     Then then;
     std::string what;  // for the log: "iteration 3 of job 7"
+    // Set for accept(): never tried again; its waiter hears why now.
+    std::function<void(const std::string& why)> refuse;
+    bool droppable = true;  // false for a job's end: a full queue takes it all the same
   };
   bool enqueue(Write write);
   void write_loop();
-  void apply(Write& write);
+  // Under mutex_: the head failed with `failure`; log it once, refuse the accepts waiting.
+  void note_failure(const Write& write, const std::string& failure);
+  // Under mutex_: the writes still waiting are given up (stopping, or flush's patience is over).
+  void give_up(const std::string& why);
   void prune(sqlite3* db);
 
   std::optional<StateDirectoryLock> lock_;  // this server's, for the store's life
@@ -154,7 +166,11 @@ class JobStore {
   std::string problem_;
   std::uint64_t dropped_ = 0;
   std::uint64_t failed_ = 0;
-  std::uint64_t failures_in_a_row_ = 0;
+  bool failing_ = false;      // the head of the queue failed and waits to be tried again
+  bool retry_now_ = false;    // a new write came: try the head again without waiting
+  bool giving_up_ = false;    // flush's patience is over: a failing head is given up
+  std::chrono::steady_clock::time_point failing_since_;
+  std::uint64_t attempts_failed_in_a_row_ = 0;
   std::thread writer_;
 };
 
