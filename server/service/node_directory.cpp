@@ -150,7 +150,9 @@ std::optional<NodeRecord> NodeDirectory::node_for_axis(const std::string& axis) 
   std::lock_guard lock(mutex_);
   const auto now = std::chrono::steady_clock::now();
   for (const auto& [name, record] : nodes_) {
-    if (now - record.last_seen > expiry_ || !record.refused.empty()) continue;
+    const double period_s = record.status.status_period_s() > 0.0 ? record.status.status_period_s() : 0.5;
+    const auto fresh = std::chrono::duration<double>(kFreshStatusPeriods * period_s);
+    if (now - record.last_seen > expiry_ || now - record.last_seen > fresh || !record.refused.empty()) continue;
     for (const auto& a : record.status.axes()) {
       if (a == axis) return record;
     }

@@ -45,8 +45,12 @@ class NodeDirectory {
 
   // Live nodes, refused ones included (with the reason).
   std::vector<NodeRecord> nodes() const;
-  // The live, unrefused node hosting `axis`.
+  // The live, unrefused node hosting `axis`, heard from within kFreshStatusPeriods of its status
+  // period: a node killed and restarted is listed on until its silence expires, and a job must
+  // not start on the dead one's record (its events would come from a participant it does not
+  // know); the job waits for the restarted node's own.
   std::optional<NodeRecord> node_for_axis(const std::string& axis) const;
+  static constexpr double kFreshStatusPeriods = 2.5;
   std::chrono::milliseconds expiry() const { return expiry_; }
   // The counts of `axis` of node `node` (zero if none was seen).
   AxisEventCounts axis_events(const std::string& node, const std::string& axis) const;
