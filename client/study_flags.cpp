@@ -114,6 +114,13 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
         throw std::invalid_argument("--divergence-limit: expected a positive length such as 50mm");
       }
     }
+    if (!f.contour_error_limit.empty()) {
+      job.set_contour_error_limit_m(
+          parse_quantity(f.contour_error_limit, Quantity::length, "--contour-error-limit"));
+      if (!(job.contour_error_limit_m() > 0.0 && job.contour_error_limit_m() <= 1e3)) {
+        throw std::invalid_argument("--contour-error-limit: expected a positive length such as 0.5mm");
+      }
+    }
     if (!f.command_limit.empty()) {
       job.set_command_limit(parse_quantity(f.command_limit, Quantity::plain, "--command-limit"));
       if (!(job.command_limit() > 0.0)) {
@@ -177,7 +184,8 @@ StudyPlan plan_from_flags(const StudyFlags& f) {
     for (const auto& [group, text] : f.gains) gains_given = gains_given || !text.empty();
     const bool overridden = changes_setup || !f.controllers.empty() || gains_given ||
                             !f.estimator.empty() || !f.deadline.empty() || !f.compute_delay.empty() ||
-                            !f.command_limit.empty() || !f.divergence_limit.empty() || !f.clock.empty() ||
+                            !f.command_limit.empty() || !f.divergence_limit.empty() ||
+                            !f.contour_error_limit.empty() || !f.clock.empty() ||
                             !f.axes.empty() || !f.plant.empty() || !f.compensate.empty();
     for (const auto& job : plan.jobs) {
       try {
@@ -246,6 +254,10 @@ void add_job_override_flags(CLI::App* app, StudyFlags& flags) {
   app->add_option("--deadline", flags.deadline, "How long the server waits for feedback (default: one period)");
   app->add_option("--compute-delay", flags.compute_delay, "Computation delay tau_cc in virtual time");
   app->add_option("--divergence-limit", flags.divergence_limit, "Contour error at which a run counts as unstable and stops (default 50mm)");
+  app->add_option("--contour-error-limit", flags.contour_error_limit,
+                  "Contour error beyond which the job stops at once, naming the crossing: a realtime job fails with "
+                  "its axes quick-stopped, a simulated run ends there as unstable (default: a quarter of the "
+                  "reference's size for a realtime job, none otherwise)");
   app->add_option("--command-limit", flags.command_limit, "Command saturation |U| enforced at the axis (default: none)");
   app->add_option("--iterations", flags.iterations, "ILC iterations per run (1..100000)")->check(CLI::Range(1, 100000));
   // One flag per gains group of the controller registry: a new family's appears by itself.

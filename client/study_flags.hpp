@@ -17,6 +17,7 @@ struct StudyFlags {
   std::string spec_file;
   std::string trajectory, plant, controllers, delay, uplink_delay, loss, uplink_loss;
   std::string sample_period, duration, deadline, compute_delay, divergence_limit, command_limit;
+  std::string contour_error_limit;
   // Each gains group's flag (--adrc, --ilc, --task-space, ...: the controller registry's), by group.
   std::map<std::string, std::string> gains;
   std::string adrc_y;  // --adrc-y: the second axis's ADRC (what --adrc y.KEY=.. says)

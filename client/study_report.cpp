@@ -87,6 +87,10 @@ void print_steady_table(std::ostream& out, const StudyPlan& plan,
   for (const auto& outcome : outcomes) {
     const auto& m = last(outcome);
     const auto& first = last(first_on_trajectory(outcomes, outcome));
+    if (m.has_stop_reason()) {
+      fmt::print(out, "{:<{}} stopped: {}\n", outcome.result.label(), width, m.stop_reason());
+      continue;
+    }
     if (m.diverged()) {
       fmt::print(out, "{:<{}} unstable at t = {:.3f} s\n", outcome.result.label(), width, m.diverged_at_s());
       continue;
@@ -191,6 +195,10 @@ void print_study_table(std::ostream& out, const StudyPlan& plan,
   const auto& reference = last(outcomes.front());
   for (const auto& outcome : outcomes) {
     const auto& m = last(outcome);
+    if (m.has_stop_reason()) {
+      fmt::print(out, "{:<18} stopped: {} of iteration {}\n", outcome.result.label(), m.stop_reason(), m.iteration());
+      continue;
+    }
     if (m.diverged()) {
       fmt::print(out, "{:<18} unstable: contour error beyond the divergence limit at t = {:.3f} s of iteration {}\n",
                  outcome.result.label(), m.diverged_at_s(), m.iteration());

@@ -288,7 +288,10 @@ void RealtimeAxisNode::commission(const std::string& axis_name, OwnedAxis& axis,
                       kind == netmc::dds::CONTROL_JOG;
   std::string refusal;
   if (kind == netmc::dds::CONTROL_QUICK_STOP && axis.endpoint) {
-    quick_stop_job(axis_name, axis);
+    const bool own_job = control.server() == axis.server && control.job_id() == axis.job_id;
+    quick_stop_job(axis_name, axis,
+                   own_job ? "quick stop by its job's server (a limit the job crossed)"
+                           : "quick stop by the operator (netmc quick-stop)");
   } else if (!axis.commissioning) {
     refusal = "axis " + axis_name + " has a simulated drive (" + link_.config().drives.at(axis_name).spec.describe() +
               "): it moves only in a job's time; commissioning needs a hardware drive (modbus-tcp, plugin)";
@@ -334,7 +337,7 @@ void RealtimeAxisNode::commission(const std::string& axis_name, OwnedAxis& axis,
   publish_status();  // at once: the operator waits on the command number
 }
 
-void RealtimeAxisNode::quick_stop_job(const std::string& axis_name, OwnedAxis& axis) {
+void RealtimeAxisNode::quick_stop_job(const std::string& axis_name, OwnedAxis& axis, const std::string& why) {
   // The operator's quick stop ends the job on this axis, as the watchdog's does.
   axis.endpoint->hold();
   axis.holding = true;
@@ -345,9 +348,8 @@ void RealtimeAxisNode::quick_stop_job(const std::string& axis_name, OwnedAxis& a
   }
   if (axis.phase == Phase::preparing || axis.phase == Phase::ready) axis.phase = Phase::idle;
   axis.move.reset();
-  spdlog::warn("axis {} job {}: quick stop by the operator", axis_name, axis.job_id);
-  publish_job_event(axis_name, axis, axis.iteration, netmc::dds::AXIS_FAULT,
-                    "axis " + axis_name + ": quick stop by the operator (netmc quick-stop)");
+  spdlog::warn("axis {} job {}: {}", axis_name, axis.job_id, why);
+  publish_job_event(axis_name, axis, axis.iteration, netmc::dds::AXIS_FAULT, "axis " + axis_name + ": " + why);
 }
 
 void RealtimeAxisNode::publish_job_event(const std::string& axis_name, const OwnedAxis& axis, std::uint32_t iteration,

@@ -118,7 +118,7 @@ class RealtimeAxisNode {
   // An operator's commissioning command (CONTROL_ENABLE ... CONTROL_JOG): taken, or refused with
   // the reason in the node's status.
   void commission(const std::string& axis_name, OwnedAxis& axis, const netmc::dds::JobControl& control);
-  void quick_stop_job(const std::string& axis_name, OwnedAxis& axis);
+  void quick_stop_job(const std::string& axis_name, OwnedAxis& axis, const std::string& why);
   // An event of the axis's job to its server (detail at most 255 characters).
   void publish_job_event(const std::string& axis_name, const OwnedAxis& axis, std::uint32_t iteration,
                          netmc::dds::AxisEventKind kind, const std::string& detail);

@@ -481,6 +481,10 @@ void check_ranges(const netmc::v1::JobSpec& spec) {
   require(spec.evaluation_start_s(), 0.0, 1e6, "evaluation_start", " s");
   require(spec.command_limit(), 0.0, 1e6, "command_limit", " (0: none)");
   require(spec.divergence_limit_m(), 0.0, 1e3, "divergence_limit", " m (0: 50 mm)");
+  if (spec.has_contour_error_limit_m() &&
+      !(spec.contour_error_limit_m() > 0.0 && spec.contour_error_limit_m() <= 1e3)) {
+    throw std::invalid_argument("contour_error_limit_m: expected a length in (0, 1000] m");
+  }
   require(spec.sensor().resolution_m(), 0.0, 1.0, "sensor.resolution", " m");
   require(spec.sensor().noise_stddev_m(), 0.0, 1.0, "sensor.noise_stddev", " m");
   if (spec.has_initial_position()) {
@@ -580,6 +584,11 @@ sim::ContourJob build_contour_job(const netmc::v1::JobSpec& spec, const JobBuild
   job.evaluation_start_s = spec.evaluation_start_s();
   if (spec.command_limit() != 0.0) job.command_limit = spec.command_limit();
   if (spec.divergence_limit_m() != 0.0) job.divergence_limit_m = spec.divergence_limit_m();
+  if (spec.has_contour_error_limit_m()) {
+    job.contour_error_limit_m = spec.contour_error_limit_m();
+  } else if (spec.clock() == "realtime") {
+    job.contour_error_limit_m = kRealtimeContourErrorLimitShare * job.reference_size_m();
+  }
   if (spec.has_initial_position()) {
     if (job.axis_count() == 3) {
       throw std::invalid_argument("initial_position: a three-axis contour starts on the contour; expected none");
@@ -695,6 +704,7 @@ netmc::v1::IterationMetrics to_proto(const sim::IterationMetrics& m) {
   out.set_stale_setpoints(static_cast<std::uint32_t>(m.stale_setpoints));
   out.set_diverged(m.diverged);
   out.set_diverged_at_s(m.diverged_at_s);
+  if (!m.stop_reason.empty()) out.set_stop_reason(m.stop_reason);
   if (m.did_not_follow) out.set_did_not_follow(true);
   out.set_clock_uncertainty_s(m.clock_uncertainty_s);
   if (m.compensated) {

@@ -31,6 +31,10 @@ void check_name(const std::string& name, const std::string& field);
 void apply_defaults(netmc::v1::JobSpec& spec);
 // Limits of a spec (docs/operations/hostile-networks-and-clients.md, "Job spec limits"); the other scalar fields' ranges are there too.
 inline constexpr std::size_t kMaxJobNameBytes = 256;
+// A realtime job's contour-error limit where its spec names none: this share of the reference's
+// size (the larger side of the box it sweeps): 5 mm on paper 001's 20 mm circle. Far beyond any
+// tracking result, far short of the 50 mm divergence limit a run could reach unsupervised.
+inline constexpr double kRealtimeContourErrorLimitShare = 0.25;
 inline constexpr std::uint32_t kMaxIterations = 10000;
 
 // What a process builds of a job it does not run whole. A plant or controller read from a file

@@ -67,6 +67,17 @@ void JobPublisher::command(std::size_t axis, std::uint32_t iteration, std::uint6
   dds::write_checked(channels_.setpoints.at(axis), &setpoint);
 }
 
+void JobPublisher::quick_stop(std::uint32_t iteration) noexcept {
+  for (std::size_t axis = 0; axis < channels_.axes.size(); ++axis) {
+    try {
+      auto c = control(axis, iteration, netmc::dds::CONTROL_QUICK_STOP);
+      dds::write_checked(channels_.control, &c);
+    } catch (const std::exception&) {
+      // The axis's watchdog stops it when no setpoint follows.
+    }
+  }
+}
+
 void JobPublisher::end_job() noexcept {
   for (std::size_t axis = 0; axis < channels_.axes.size(); ++axis) {
     try {

@@ -59,6 +59,8 @@ class JobPublisher {
                double send_time_s, double acts_at_s);
   // Releases every axis (never throws: it runs on the way out of failed jobs too).
   void end_job() noexcept;
+  // Every axis's drive quick-stops now (a limit the job crossed); the job ends after.
+  void quick_stop(std::uint32_t iteration) noexcept;
   std::uint64_t job_id() const { return job_id_; }
 
  private:

@@ -158,6 +158,12 @@ void RealtimeDdsRunner::run(const std::function<void(const sim::IterationRecord&
         std::this_thread::sleep_until(dds::steady_time_at(time_base_, t0_s_ + server_.compute_time(k)));
         const auto ready = Clock::now();
         const sim::CycleCommand command = server_.compute_cycle(k);
+        if (!command.limit_exceeded.empty()) {
+          // Hardware must not run on past the job's limit: the drives' own quick stop, at once.
+          publisher_.quick_stop(iteration);
+          throw JobFailure(command.limit_exceeded + " of iteration " + std::to_string(iteration) +
+                           ": the axes were quick-stopped");
+        }
         if (command.diverged || cancel.load()) {
           stopped_early = !command.diverged;
           break;

@@ -71,6 +71,7 @@ void ContourJob::validate() const {
               std::to_string(compute_delay_s));
   require(command_limit > 0.0, "command_limit: expected a positive number");
   require(divergence_limit_m > 0.0, "divergence_limit: expected a positive length");
+  require(contour_error_limit_m > 0.0, "contour_error_limit: expected a positive length");
   require(uplink.delay && uplink.loss && downlink.delay && downlink.loss,
           "delay: every link needs a delay and a loss model");
   require(!compensation || compensation->axis_models.size() == axis_count(),
@@ -139,6 +140,22 @@ double ContourJob::run_length_s() const {
         }
       },
       reference);
+}
+
+double ContourJob::reference_size_m() const {
+  const auto group = contour();
+  control::GroupReference point;
+  control::AxisVector low, high;
+  for (std::size_t k = 0; k < cycles(); ++k) {
+    group->sample(static_cast<double>(k) * sample_period_s, point);
+    if (k == 0) {
+      low = high = point.position;
+    } else {
+      low = low.cwiseMin(point.position);
+      high = high.cwiseMax(point.position);
+    }
+  }
+  return cycles() == 0 ? 0.0 : (high - low).maxCoeff();
 }
 
 std::size_t ContourJob::cycles() const {

@@ -87,6 +87,12 @@ struct ContourJob {
   // A run whose true contour error exceeds this (or whose command is not finite) is unstable:
   // the iteration stops there and is reported as diverged; later iterations are not run.
   double divergence_limit_m = 0.05;
+  // The job's contour-error limit: beyond it the iteration stops at once with the crossing named
+  // (IterationMetrics::stop_reason); a realtime job then fails, its axes quick-stopped. Infinity:
+  // none.
+  double contour_error_limit_m = std::numeric_limits<double>::infinity();
+  // The larger side of the box the reference sweeps over the run (sampled every period).
+  double reference_size_m() const;
   // Start of the evaluation window of the steady metrics; 0: after two periods of the reference.
   double evaluation_start_s = 0.0;
   double evaluation_start() const;

@@ -1,5 +1,7 @@
 #include "server/sim/contour_server.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -199,6 +201,22 @@ CycleCommand ContourServer::compute_cycle(std::uint64_t cycle) {
     m.diverged = true;
     m.diverged_at_s = t;
     out.diverged = true;
+    return out;
+  }
+  if (std::abs(contour_error) > job_.contour_error_limit_m) {
+    // Named by the axis farthest from its reference: where to look first.
+    Eigen::Index worst = 0;
+    (reference.position - true_position_).cwiseAbs().maxCoeff(&worst);
+    m.diverged = true;
+    m.diverged_at_s = t;
+    m.stop_reason = fmt::format(
+        "contour error {:.3f} mm beyond the limit {:.3f} mm at cycle {} (t = {:.3f} s); axis {} {:.3f} mm from its "
+        "reference",
+        std::abs(contour_error) * 1e3, job_.contour_error_limit_m * 1e3, cycle, t,
+        job_.axis_names[static_cast<std::size_t>(worst)],
+        (reference.position[worst] - true_position_[worst]) * 1e3);
+    out.diverged = true;
+    out.limit_exceeded = m.stop_reason;
     return out;
   }
   ++samples_;

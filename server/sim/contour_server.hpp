@@ -32,6 +32,8 @@ struct CycleCommand {
   std::size_t horizon_length = 0;
   std::vector<double> horizon;
   bool diverged = false;        // the loop is unstable: stop the iteration
+  // The contour-error limit was crossed (diverged too): a realtime job fails with this message.
+  std::string limit_exceeded;
 };
 
 class ContourServer {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "control/contour_group.hpp"
@@ -45,6 +46,8 @@ struct IterationMetrics {
   // the whole curve, so axes standing on it show e_max 0: such a run is no result.
   bool did_not_follow = false;
   double diverged_at_s = 0.0;
+  // Where a limit stopped the iteration (the contour-error limit): what crossed it, when, where.
+  std::string stop_reason;
   double clock_uncertainty_s = 0.0;      // distributed realtime: +- on tau_sc / tau_ca
   // With a delay compensator only: the age of the newest feedback of each axis when a cycle was
   // computed (compute time - sample time), over the cycles and axes.

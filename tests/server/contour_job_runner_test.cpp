@@ -1,6 +1,8 @@
 // The virtual-time loop: delay accounting, long delays, reordering, loss, deadlines, determinism.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "server/sim/contour_job_runner.hpp"
@@ -133,6 +135,51 @@ TEST(ContourJobRunner, AnUnstableLoopIsReportedAndStopsTheRun) {
   // The same loop without delay is stable.
   job.downlink.delay = netsim::make_no_delay();
   EXPECT_FALSE(ContourJobRunner(job).run_iteration().metrics.diverged);
+}
+
+// The contour-error limit stops the iteration at the first cycle whose exact contour error
+// exceeds it: checked against the same run without the limit, traced cycle by cycle.
+TEST(ContourJobRunner, TheContourErrorLimitStopsAtItsFirstCrossingNamingCycleAndAxis) {
+  ContourJob free_run = small_circle_job("adrc+pidccc");
+  free_run.downlink.delay = netsim::make_constant_delay(0.010);  // unstable: the error grows
+  free_run.record_traces = true;
+  const auto reference = ContourJobRunner(free_run).run_iteration();
+  const double limit = 0.5e-3;
+  std::size_t crossing = 0;
+  double e_max_before = 0.0;
+  while (std::abs(reference.trace.at(crossing).contour_error_m) <= limit) {
+    e_max_before = std::max(e_max_before, std::abs(reference.trace[crossing].contour_error_m));
+    ++crossing;
+  }
+  ASSERT_GT(crossing, 10u);
+
+  ContourJob limited = free_run;
+  limited.contour_error_limit_m = limit;
+  limited.iterations = 3;
+  const auto records = ContourJobRunner(limited).run_all();
+  ASSERT_EQ(records.size(), 1u);  // later iterations are not run
+  const auto& m = records[0].metrics;
+  EXPECT_TRUE(m.diverged);
+  EXPECT_DOUBLE_EQ(m.diverged_at_s, static_cast<double>(crossing) * 0.005);
+  EXPECT_EQ(m.e_max_m, e_max_before);  // the samples before the crossing, bit for bit
+  const auto& row = reference.trace[crossing];
+  const bool x_worse = std::abs(row.reference_m[0] - row.position_m[0]) >= std::abs(row.reference_m[1] - row.position_m[1]);
+  EXPECT_NE(m.stop_reason.find(fmt::format("beyond the limit 0.500 mm at cycle {} ", crossing)), std::string::npos)
+      << m.stop_reason;
+  EXPECT_NE(m.stop_reason.find(fmt::format("axis {} ", x_worse ? "x" : "y")), std::string::npos) << m.stop_reason;
+  EXPECT_NE(m.stop_reason.find(fmt::format("contour error {:.3f} mm", std::abs(row.contour_error_m) * 1e3)),
+            std::string::npos)
+      << m.stop_reason;
+
+  // A stable run under the same limit is untouched, bit for bit.
+  ContourJob stable = small_circle_job("adrc");
+  const auto plain = ContourJobRunner(stable).run_iteration().metrics;
+  stable.contour_error_limit_m = limit;
+  const auto watched = ContourJobRunner(stable).run_iteration().metrics;
+  EXPECT_LT(plain.e_max_m, limit);
+  EXPECT_EQ(watched.e_max_m, plain.e_max_m);
+  EXPECT_EQ(watched.e_sum_m, plain.e_sum_m);
+  EXPECT_TRUE(watched.stop_reason.empty());
 }
 
 TEST(ContourJobRunner, InvalidJobsNameTheField) {

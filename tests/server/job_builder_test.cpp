@@ -2,6 +2,7 @@
 // the field.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "server/job/controller_gains.hpp"
@@ -40,6 +41,24 @@ TEST(JobBuilder, JsonSpecWithDefaults) {
   // kcd unset: paper 001's 40.
   EXPECT_NE(controller_of(job).find("ilccc(kcp=30, kcd=40)"), std::string::npos) << controller_of(job);
   EXPECT_NEAR(job.downlink.delay->mean_s(), 0.00055, 1e-15);
+}
+
+// The contour-error limit: none unless asked in lockstep; a realtime job's default is a quarter
+// of the reference's size (the 20 mm circle sampled every 5 ms: 5 mm); a given one is kept and
+// checked.
+TEST(JobBuilder, ContourErrorLimitDefaultsOnlyForRealtime) {
+  auto spec = valid_spec();
+  EXPECT_TRUE(std::isinf(build_contour_job(spec).contour_error_limit_m));
+  spec.set_clock("realtime");
+  const auto realtime = build_contour_job(spec);
+  EXPECT_NEAR(realtime.reference_size_m(), 0.02, 1e-12);  // 1600 samples of 8 s hit 0 and pi
+  EXPECT_NEAR(realtime.contour_error_limit_m, kRealtimeContourErrorLimitShare * 0.02, 1e-12);
+  spec.set_contour_error_limit_m(0.5e-3);
+  EXPECT_EQ(build_contour_job(spec).contour_error_limit_m, 0.5e-3);
+  spec.set_contour_error_limit_m(0.0);
+  EXPECT_NE(error_of(spec).find("contour_error_limit_m: expected a length in (0, 1000] m"), std::string::npos);
+  spec.set_contour_error_limit_m(std::nan(""));
+  EXPECT_NE(error_of(spec).find("contour_error_limit_m"), std::string::npos);
 }
 
 TEST(JobBuilder, ContourLibraryShapesFromJson) {
