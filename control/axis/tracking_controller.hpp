@@ -9,14 +9,9 @@
 #include <vector>
 
 #include "control/controller_estimate.hpp"
+#include "control/trajectory/axis_reference.hpp"
 
 namespace netmc::control {
-
-struct AxisReference {
-  double position = 0.0;      // x_d (m)
-  double velocity = 0.0;      // x_d' (m/s)
-  double acceleration = 0.0;  // x_d'' (m/s^2)
-};
 
 class TrackingController {
  public:

@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "control/contour_error/foot_point.hpp"
+#include "control/trajectory/foot_point.hpp"
 
 namespace netmc::control {
 

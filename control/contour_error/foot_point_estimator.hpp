@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "control/contour_error/contour_error_estimator.hpp"
-#include "control/contour_error/foot_point.hpp"
+#include "control/trajectory/foot_point.hpp"
 
 namespace netmc::control {
 

@@ -1,7 +1,7 @@
 #include "control/dead_zone/diarc_tracking_loop.hpp"
 
 #include "control/parameter_check.hpp"
-#include "control/task_space/box_projection.hpp"
+#include "control/estimation/box_projection.hpp"
 
 namespace netmc::control {
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <type_traits>
 
-#include "control/task_space/box_projection.hpp"
+#include "control/estimation/box_projection.hpp"
 
 namespace netmc::control {
 

@@ -5,7 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "control/task_space/box_projection.hpp"
+#include "control/estimation/box_projection.hpp"
 #include "control/parameter_check.hpp"
 
 namespace netmc::control {

@@ -7,7 +7,7 @@
 
 #include "control/trajectory/circle_trajectory.hpp"
 #include "control/trajectory/ellipse_trajectory.hpp"
-#include "control/contour_error/foot_point.hpp"
+#include "control/trajectory/foot_point.hpp"
 #include "control/parameter_check.hpp"
 
 namespace netmc::control {

@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "control/contour_error/foot_point.hpp"
+#include "control/trajectory/foot_point.hpp"
 #include "control/trajectory/reference_trajectory.hpp"
 
 namespace netmc::control {

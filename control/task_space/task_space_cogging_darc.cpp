@@ -7,7 +7,7 @@
 #include <string>
 
 #include "control/parameter_check.hpp"
-#include "control/task_space/box_projection.hpp"
+#include "control/estimation/box_projection.hpp"
 
 namespace netmc::control {
 

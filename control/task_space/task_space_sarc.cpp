@@ -4,7 +4,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "control/task_space/box_projection.hpp"
+#include "control/estimation/box_projection.hpp"
 #include "control/parameter_check.hpp"
 
 namespace netmc::control {

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "control/parameter_check.hpp"
-#include "control/contour_error/point_ellipse_distance.hpp"
+#include "control/trajectory/point_ellipse_distance.hpp"
 
 namespace netmc::control {
 

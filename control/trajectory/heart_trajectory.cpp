@@ -4,7 +4,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "control/contour_error/foot_point.hpp"
+#include "control/trajectory/foot_point.hpp"
 #include "control/parameter_check.hpp"
 
 namespace netmc::control {

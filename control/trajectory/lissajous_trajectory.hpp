@@ -4,7 +4,7 @@
 // one period and crosses itself, so it has no single inside: its contour error is signed by the
 // normal on the right of the direction of travel at the foot point.
 
-#include "control/contour_error/foot_point.hpp"
+#include "control/trajectory/foot_point.hpp"
 #include "control/trajectory/planar_curve.hpp"
 #include "control/trajectory/reference_trajectory.hpp"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "control/axis/tracking_controller.hpp"
+#include "control/trajectory/axis_reference.hpp"
 
 namespace netmc::control {
 

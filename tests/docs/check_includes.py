@@ -62,10 +62,6 @@ KNOWN_EDGES = {
     ('control/data_driven', 'control'), ('control/dead_zone', 'control'), ('control/delay_compensation', 'control'),
     ('control/estimation', 'control'), ('control/frequency', 'control'), ('control/task_space', 'control'),
     ('control/trajectory', 'control'), ('control/plugin', 'control'),
-    # One type or helper each, in the wrong folder.
-    ('control/trajectory', 'control/contour_error'),  # point_ellipse_distance.hpp (curve geometry)
-    ('control/trajectory', 'control/axis'),           # multi_sine_reference.hpp: tracking_controller.hpp's type
-    ('control/estimation', 'control/task_space'),     # projected_least_squares.hpp: box_projection.hpp
 }
 # The programs' main.cpp wire the process: they may include what their program links.
 MAINS = {
@@ -160,6 +156,9 @@ def main():
     edges, witnesses = {}, {}
     files = 0
     repository = set(sources(root))
+    for file, _ in planted:
+        if file not in repository:
+            sys.exit(f'check_includes: --plant: no source {file} in the repository')
     for path in sorted(repository):
         if layer_of(path) is None:
             continue

@@ -1,4 +1,4 @@
-#include "control/contour_error/point_ellipse_distance.hpp"
+#include "control/trajectory/point_ellipse_distance.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "control/contour_error/foot_point.hpp"
+#include "control/trajectory/foot_point.hpp"
 
 #include <algorithm>
 #include <cmath>
