@@ -12,7 +12,7 @@
 #include "control/trajectory/circle_trajectory.hpp"
 #include "control/contour_error/contour_error_estimator.hpp"
 #include "control/contour_error/corner_foot_point.hpp"
-#include "control/contour_error/foot_point.hpp"
+#include "control/trajectory/foot_point.hpp"
 #include "control/trajectory/heart_trajectory.hpp"
 #include "netsim/random_stream.hpp"
 

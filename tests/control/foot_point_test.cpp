@@ -5,7 +5,7 @@
 
 #include "control/trajectory/circle_trajectory.hpp"
 #include "control/trajectory/ellipse_trajectory.hpp"
-#include "control/contour_error/foot_point.hpp"
+#include "control/trajectory/foot_point.hpp"
 #include "control/trajectory/heart_trajectory.hpp"
 
 namespace netmc::control {

@@ -7,7 +7,7 @@
 #include "control/trajectory/circle_trajectory.hpp"
 #include "control/trajectory/ellipse_trajectory.hpp"
 #include "control/trajectory/line_trajectory.hpp"
-#include "control/contour_error/point_ellipse_distance.hpp"
+#include "control/trajectory/point_ellipse_distance.hpp"
 
 namespace netmc::control {
 namespace {
