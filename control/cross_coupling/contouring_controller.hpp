@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "control/axis/axis_controller.hpp"
-#include "control/contour_controller.hpp"
+#include "control/contouring/contour_controller.hpp"
 #include "control/cross_coupling/contour_compensator.hpp"
 #include "control/contour_error/contour_error_estimator.hpp"
 #include "control/trajectory/reference_trajectory.hpp"

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "control/axis/feedforward_pid_axis.hpp"
-#include "control/contour_controller.hpp"
+#include "control/contouring/contour_controller.hpp"
 #include "control/contour_error/contour_error_estimator.hpp"
 #include "control/cross_coupling/contour_compensator.hpp"
 

@@ -18,7 +18,7 @@
 
 #include <memory>
 
-#include "control/contour_controller.hpp"
+#include "control/contouring/contour_controller.hpp"
 #include "control/contour_error/contour_error_estimator.hpp"
 #include "control/data_driven/data_driven_axis_law.hpp"
 

@@ -48,7 +48,7 @@
 #include <deque>
 #include <memory>
 
-#include "control/contour_controller.hpp"
+#include "control/contouring/contour_controller.hpp"
 #include "control/axis/extended_state_observer.hpp"
 #include "control/task_space/task_frame.hpp"
 

@@ -18,7 +18,7 @@
 #include <memory>
 #include <vector>
 
-#include "control/contour_controller.hpp"
+#include "control/contouring/contour_controller.hpp"
 #include "control/estimation/projected_least_squares.hpp"
 #include "control/estimation/second_order_low_pass.hpp"
 #include "control/task_space/task_space_darc.hpp"

@@ -6,7 +6,7 @@
 
 #include <memory>
 
-#include "control/contour_controller.hpp"
+#include "control/contouring/contour_controller.hpp"
 #include "control/task_space/task_space_sliding_variable.hpp"
 
 namespace netmc::control {

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "control/axis/axis_controller.hpp"
-#include "control/contour_group.hpp"
+#include "control/group/contour_group.hpp"
 #include "control/cross_coupling/contour_compensator.hpp"
 #include "control/delay_compensation/prediction_model.hpp"
 #include "server/job/controller_gains.hpp"

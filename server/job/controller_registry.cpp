@@ -7,7 +7,7 @@
 
 #include "control/contour_error/contour_error_estimator.hpp"
 #include "control/cross_coupling/contouring_controller.hpp"
-#include "control/planar_contour_group.hpp"
+#include "control/group/planar_contour_group.hpp"
 #include "server/plugins/component_plugin_spec.hpp"
 #include "server/plugins/loaded_component_plugin.hpp"
 

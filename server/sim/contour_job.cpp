@@ -3,11 +3,11 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "control/dead_zone_compensated_group.hpp"
+#include "control/group/dead_zone_compensated_group.hpp"
 #include "control/trajectory/multi_sine_reference.hpp"
-#include "control/planar_contour_group.hpp"
-#include "control/single_axis_group.hpp"
-#include "control/spatial_contour_group.hpp"
+#include "control/group/planar_contour_group.hpp"
+#include "control/group/single_axis_group.hpp"
+#include "control/group/spatial_contour_group.hpp"
 
 namespace netmc::sim {
 namespace {

@@ -14,7 +14,7 @@
 #include <variant>
 #include <vector>
 
-#include "control/contour_group.hpp"
+#include "control/group/contour_group.hpp"
 #include "control/dead_zone/dead_zone_inverse.hpp"
 #include "control/delay_compensation/prediction_model.hpp"
 #include "control/trajectory/multi_sine_reference.hpp"

@@ -10,7 +10,7 @@
 #include <memory>
 #include <vector>
 
-#include "control/contour_group.hpp"
+#include "control/group/contour_group.hpp"
 #include "control/delay_compensation/axis_state_predictor.hpp"
 #include "netsim/delayed_channel.hpp"
 #include "server/sim/axis_endpoint.hpp"

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "control/contour_group.hpp"
+#include "control/group/contour_group.hpp"
 
 namespace netmc::sim {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "control/contour_group.hpp"
+#include "control/group/contour_group.hpp"
 
 namespace netmc::sim {
 

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "control/single_axis_group.hpp"
+#include "control/group/single_axis_group.hpp"
 #include "control/trajectory/multi_sine_reference.hpp"
 
 namespace netmc::control {

@@ -55,14 +55,7 @@ KNOWN_INCLUDES = {
     # The console's preset list: the presets belong below both server and client.
     ('server/service/main.cpp', 'client/presets.hpp'),
 }
-KNOWN_EDGES = {
-    # control/'s root holds both what every kind uses (parameter checks, the contouring interface)
-    # and the groups that compose the kinds: a base folder of its own would cut these.
-    ('control/axis', 'control'), ('control/contour_error', 'control'), ('control/cross_coupling', 'control'),
-    ('control/data_driven', 'control'), ('control/dead_zone', 'control'), ('control/delay_compensation', 'control'),
-    ('control/estimation', 'control'), ('control/frequency', 'control'), ('control/task_space', 'control'),
-    ('control/trajectory', 'control'), ('control/plugin', 'control'),
-}
+KNOWN_EDGES = set()  # none left: control/'s folders form no cycle since its groups moved to group/
 # The programs' main.cpp wire the process: they may include what their program links.
 MAINS = {
     'server/service/main.cpp': LAYERS['server/console/'] + ('server/console/',),

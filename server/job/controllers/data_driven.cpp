@@ -7,7 +7,7 @@
 #include "control/data_driven/compact_form_mfac.hpp"
 #include "control/data_driven/data_driven_contouring.hpp"
 #include "control/data_driven/mfa_dtsmc_axis.hpp"
-#include "control/planar_contour_group.hpp"
+#include "control/group/planar_contour_group.hpp"
 #include "server/job/controller_registry.hpp"
 
 namespace netmc::job {

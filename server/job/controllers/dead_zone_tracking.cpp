@@ -8,7 +8,7 @@
 #include "control/dead_zone/adaptive_variable_structure_controller.hpp"
 #include "control/dead_zone/dead_zone_diarc.hpp"
 #include "control/dead_zone/fixed_inverse_diarc.hpp"
-#include "control/single_axis_group.hpp"
+#include "control/group/single_axis_group.hpp"
 #include "server/job/controller_registry.hpp"
 #include "server/job/dead_zone_spec.hpp"
 

@@ -4,7 +4,7 @@
 #include "control/axis/feedforward_pid_axis.hpp"
 #include "control/contour_error/contour_error_estimator.hpp"
 #include "control/cross_coupling/feedforward_pid_contouring.hpp"
-#include "control/planar_contour_group.hpp"
+#include "control/group/planar_contour_group.hpp"
 #include "server/job/controller_registry.hpp"
 
 namespace netmc::job {

@@ -7,8 +7,8 @@
 
 #include <stdexcept>
 
-#include "control/planar_contour_group.hpp"
-#include "control/spatial_contour_group.hpp"
+#include "control/group/planar_contour_group.hpp"
+#include "control/group/spatial_contour_group.hpp"
 #include "control/task_space/task_space_cogging_darc.hpp"
 #include "control/task_space/task_space_darc.hpp"
 #include "control/task_space/task_space_diarc.hpp"

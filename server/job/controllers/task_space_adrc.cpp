@@ -2,7 +2,7 @@
 // extended state observer each, on the thesis's nominal Cartesian model.
 #include <stdexcept>
 
-#include "control/planar_contour_group.hpp"
+#include "control/group/planar_contour_group.hpp"
 #include "control/task_space/task_space_adrc.hpp"
 #include "server/job/controller_registry.hpp"
 

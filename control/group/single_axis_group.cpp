@@ -1,4 +1,4 @@
-#include "control/single_axis_group.hpp"
+#include "control/group/single_axis_group.hpp"
 
 #include <stdexcept>
 

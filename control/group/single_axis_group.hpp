@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "control/axis/tracking_controller.hpp"
-#include "control/contour_group.hpp"
+#include "control/group/contour_group.hpp"
 #include "control/trajectory/multi_sine_reference.hpp"
 
 namespace netmc::control {

@@ -1,4 +1,4 @@
-#include "control/spatial_contour_group.hpp"
+#include "control/group/spatial_contour_group.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -5,8 +5,8 @@
 #include <memory>
 #include <string_view>
 
-#include "control/contour_controller.hpp"
-#include "control/contour_group.hpp"
+#include "control/contouring/contour_controller.hpp"
+#include "control/group/contour_group.hpp"
 #include "control/trajectory/reference_trajectory.hpp"
 
 namespace netmc::control {

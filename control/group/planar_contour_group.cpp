@@ -1,4 +1,4 @@
-#include "control/planar_contour_group.hpp"
+#include "control/group/planar_contour_group.hpp"
 
 #include <stdexcept>
 

@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "control/contour_group.hpp"
+#include "control/group/contour_group.hpp"
 #include "control/dead_zone/dead_zone_inverse.hpp"
 
 namespace netmc::control {

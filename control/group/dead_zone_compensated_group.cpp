@@ -1,4 +1,4 @@
-#include "control/dead_zone_compensated_group.hpp"
+#include "control/group/dead_zone_compensated_group.hpp"
 
 #include <sstream>
 #include <stdexcept>

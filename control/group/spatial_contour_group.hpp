@@ -5,7 +5,7 @@
 #include <memory>
 #include <string_view>
 
-#include "control/contour_group.hpp"
+#include "control/group/contour_group.hpp"
 #include "control/trajectory/spatial_circle.hpp"
 #include "control/task_space/spatial_sarc.hpp"
 
