@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include "client/presets.hpp"
+#include "server/job/presets/presets.hpp"
 #include "client/study_runner.hpp"
 #include "control/contour_error/contour_error_estimator.hpp"
 #include "control/trajectory/circle_trajectory.hpp"
@@ -128,7 +128,7 @@ void simulated_iterations(benchmark::State& state, const netmc::v1::JobSpec& spe
 }
 
 netmc::v1::JobSpec seed001_q_filtered_ilc() {
-  auto spec = netmc::cli::seed001_job("adrc+ilccc");
+  auto spec = netmc::presets::seed001_job("adrc+ilccc");
   netmc::job::set_gain(*spec.mutable_controller(), "ilccc", "q_cutoff_hz", 20.0);
   return spec;
 }
@@ -167,7 +167,7 @@ void BM_SimulatedIteration_Seed001_AdrcIlccc_PredictorPackets20ms(benchmark::Sta
 // iterations, in process, on `threads` worker threads. The all-cores variant reports wall-clock
 // time (UseRealTime): the CPU time of the calling thread alone would understate the work.
 void seed001_study(benchmark::State& state, unsigned threads) {
-  const netmc::cli::StudyPlan plan = netmc::cli::make_preset("seed001");
+  const netmc::presets::StudyPlan plan = netmc::presets::make_preset("seed001");
   for (auto _ : state) {
     auto outcomes = netmc::cli::run_study_in_process(plan, netmc::cli::TraceRecording::none, threads);
     benchmark::DoNotOptimize(outcomes);

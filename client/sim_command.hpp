@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 #include "client/study_flags.hpp"
 #include "client/study_report.hpp"
 #include "client/study_runner.hpp"

@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 #include "client/spec_syntax.hpp"
 #include "client/spec_validation.hpp"
 #include "server/job/controller_registry.hpp"

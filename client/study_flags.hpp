@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 
 namespace netmc::cli {
 

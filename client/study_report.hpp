@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "client/exclusive_file.hpp"
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 #include "client/study_runner.hpp"
 
 namespace netmc::cli {

@@ -4,7 +4,7 @@
 #include <functional>
 #include <vector>
 
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 #include "server/sim/iteration_metrics.hpp"
 
 namespace netmc::cli {

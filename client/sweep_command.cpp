@@ -1,6 +1,7 @@
 #include "client/sweep_command.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ostream.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "client/presets.hpp"
+#include "server/job/presets/presets.hpp"
 #include "server/console/console_service.hpp"
 #include "server/console/http_console.hpp"
 #include "server/dds/dds_options_cli.hpp"
@@ -301,8 +301,8 @@ int main(int argc, char** argv) {
           return std::nullopt;
         };
       }
-      console_options.presets = netmc::cli::preset_names();
-      console_options.preset_job = [](const std::string& name) { return netmc::cli::make_preset(name).jobs.front(); };
+      console_options.presets = netmc::presets::preset_names();
+      console_options.preset_job = [](const std::string& name) { return netmc::presets::make_preset(name).jobs.front(); };
       console_options.management_connections = [&server] { return server.open_connections(); };
       console = std::make_unique<netmc::console::ConsoleService>(io, jobs, std::move(console_options));
       // A browser shows no client certificate: the console's TLS asks for none.

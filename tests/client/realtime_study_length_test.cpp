@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 
 namespace netmc::cli {
 namespace {

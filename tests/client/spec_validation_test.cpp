@@ -3,7 +3,7 @@
 #include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>
 
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 #include "client/spec_validation.hpp"
 #include "server/job/controller_gains.hpp"
 #include "server/job/job_builder.hpp"

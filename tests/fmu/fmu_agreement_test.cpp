@@ -79,7 +79,7 @@ TEST(FmuAgreement, LinearAxisMatchesTheExactBuiltInWithin1e9) {
   run_linear(linear(-10.0, 10.0), "Y (a2 -10, b 10)");
 }
 
-// Paper 001's circle (client/presets.cpp seed001_job: r = 10 mm about (50, 50) mm, period 8 s,
+// Paper 001's circle (server/job/presets/presets_paper001.cpp, seed001_job: r = 10 mm about (50, 50) mm, period 8 s,
 // h = 5 ms, downlink delay tau ~ U(0.3, 0.8) ms): each period the old command holds for tau and
 // the new one for h - tau. The command is a PD law with feedforward on the built-in axis's state,
 // applied to both plants alike, so differences do not feed back.

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "client/presets.hpp"
+#include "server/job/presets/presets.hpp"
 #include "server/job/controller_registry.hpp"
 #include "server/job/job_builder.hpp"
 #include "tests/server/job_build_error.hpp"
@@ -27,7 +27,7 @@ netmc::v1::JobSpec plant_job(const std::string& plant, bool single_axis) {
   if (plant == "ballscrew") preset = "seed002";
   if (plant == "stage004") preset = "seed004";
   if (plant == "hiwin" || single_axis) preset = "thesis-dead-zone";
-  netmc::v1::JobSpec spec = cli::make_preset(preset).jobs.front();
+  netmc::v1::JobSpec spec = presets::make_preset(preset).jobs.front();
   spec.set_plant(single_axis && plant != "hiwin" ? spec.plant() : plant);
   spec.mutable_controller()->clear_gains();
   spec.mutable_controller()->clear_dead_zone_inverse();

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "client/presets.hpp"
+#include "server/job/presets/presets.hpp"
 #include "server/service/job_registry.hpp"
 #include "server/store/job_store.hpp"
 
@@ -38,7 +38,7 @@ TEST(JobRegistryRestore, StoredSpecsAreCheckedAsSubmittedOnesAndNoFileTheyNameIs
   const fs::path secret = scratch.dir / "secret.txt";
   fs::create_directories(scratch.dir);
   std::ofstream(secret) << "0.001\nTOP-SECRET-LINE\n";
-  netmc::v1::JobSpec valid = cli::make_preset("seed001").jobs.front();
+  netmc::v1::JobSpec valid = presets::make_preset("seed001").jobs.front();
   valid.set_iterations(2);
   netmc::v1::JobSpec names_a_file = valid;
   names_a_file.mutable_downlink()->mutable_delay()->mutable_trace()->set_path(secret.string());

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 #include "client/spec_syntax.hpp"
 #include "client/study_runner.hpp"
 #include "server/job/delay_compensators.hpp"

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 #include "client/study_runner.hpp"
 
 namespace netmc::cli {

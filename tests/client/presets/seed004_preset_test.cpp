@@ -9,7 +9,7 @@
 #include <numbers>
 #include <string>
 
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 #include "server/job/job_builder.hpp"
 #include "server/sim/contour_job_runner.hpp"
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 #include "client/spec_syntax.hpp"
 #include "server/job/controller_gains.hpp"
 #include "server/job/job_builder.hpp"

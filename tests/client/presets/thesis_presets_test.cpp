@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "client/presets.hpp"
+#include "client/study_plan.hpp"
 #include "control/task_space/task_space_cogging_darc.hpp"
 #include "control/task_space/task_space_diarc.hpp"
 #include "plant/plant_catalog.hpp"

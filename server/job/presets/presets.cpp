@@ -1,11 +1,11 @@
-#include "client/presets.hpp"
+#include "server/job/presets/presets.hpp"
 
 #include <array>
 #include <stdexcept>
 
-#include "client/preset_studies.hpp"
+#include "server/job/presets/preset_studies.hpp"
 
-namespace netmc::cli {
+namespace netmc::presets {
 namespace {
 
 struct PresetEntry {
@@ -52,4 +52,4 @@ StudyPlan make_preset(std::string_view name) {
                               "' (expected one of: " + expected + ")");
 }
 
-}  // namespace netmc::cli
+}  // namespace netmc::presets

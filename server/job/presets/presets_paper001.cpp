@@ -1,5 +1,5 @@
 // Paper 001's presets (seed001 and its variants): its circle, plant seed001, its controllers.
-#include "client/preset_studies.hpp"
+#include "server/job/presets/preset_studies.hpp"
 
 #include <fmt/format.h>
 
@@ -11,7 +11,7 @@
 
 #include "server/job/controller_gains.hpp"
 
-namespace netmc::cli {
+namespace netmc::presets {
 namespace {
 
 constexpr std::uint32_t kSeed001Iterations = 20;
@@ -112,4 +112,4 @@ StudyPlan seed001_bursty() {
                        nullptr, &d);
 }
 
-}  // namespace netmc::cli
+}  // namespace netmc::presets

@@ -2,9 +2,9 @@
 // The studies behind the named presets, one builder a preset, grouped by source (the sources'
 // short names: docs/references.md). Only presets.cpp's registration table names them.
 
-#include "client/presets.hpp"
+#include "server/job/presets/presets.hpp"
 
-namespace netmc::cli {
+namespace netmc::presets {
 
 // Paper 001 (presets_paper001.cpp).
 StudyPlan seed001();
@@ -29,4 +29,4 @@ StudyPlan seed004();
 // Paper 002 (presets_paper002.cpp).
 StudyPlan seed002();
 
-}  // namespace netmc::cli
+}  // namespace netmc::presets

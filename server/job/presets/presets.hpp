@@ -8,7 +8,7 @@
 
 #include "idl/job.pb.h"
 
-namespace netmc::cli {
+namespace netmc::presets {
 
 struct PaperRow {
   std::string controller;  // the run's label, or its controller name
@@ -33,4 +33,4 @@ StudyPlan make_preset(std::string_view name);
 // uniform 0.3..0.8 ms, plant seed001, for `controller`.
 netmc::v1::JobSpec seed001_job(const std::string& controller);
 
-}  // namespace netmc::cli
+}  // namespace netmc::presets

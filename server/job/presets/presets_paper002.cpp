@@ -1,5 +1,5 @@
 // Paper 002's preset (seed002): the ball-screw table, MFA-DTSMC and MFAC.
-#include "client/preset_studies.hpp"
+#include "server/job/presets/preset_studies.hpp"
 
 #include <fmt/format.h>
 
@@ -11,7 +11,7 @@
 
 #include "server/job/controller_gains.hpp"
 
-namespace netmc::cli {
+namespace netmc::presets {
 namespace {
 
 // Paper 002, Tables 1 and 2: the ball-screw table (eq. 1; 3 kg load: J + m rg^2 through the
@@ -85,4 +85,4 @@ StudyPlan seed002() {
   return plan;
 }
 
-}  // namespace netmc::cli
+}  // namespace netmc::presets

@@ -1,5 +1,5 @@
 // Paper 004's preset (seed004): the H-bridge stage and its cross-coupling laws.
-#include "client/preset_studies.hpp"
+#include "server/job/presets/preset_studies.hpp"
 
 #include <fmt/format.h>
 
@@ -11,7 +11,7 @@
 
 #include "server/job/controller_gains.hpp"
 
-namespace netmc::cli {
+namespace netmc::presets {
 namespace {
 
 // Paper 004, Table 4 (section 4): the H-bridge stage (stage004), the per-axis loops of
@@ -86,4 +86,4 @@ StudyPlan seed004() {
   return plan;
 }
 
-}  // namespace netmc::cli
+}  // namespace netmc::presets

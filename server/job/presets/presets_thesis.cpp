@@ -1,5 +1,5 @@
 // The thesis's presets (thesis-*): the linear-motor stage and the Hiwin axis, Ts = 0.2 ms.
-#include "client/preset_studies.hpp"
+#include "server/job/presets/preset_studies.hpp"
 
 #include <fmt/format.h>
 
@@ -11,7 +11,7 @@
 
 #include "server/job/controller_gains.hpp"
 
-namespace netmc::cli {
+namespace netmc::presets {
 namespace {
 
 // Thesis (paper 000) studies: the linear-motor stage, Ts = 0.2 ms, 0.5 um encoder, no network,
@@ -438,4 +438,4 @@ StudyPlan thesis_spatial() {
   return plan;
 }
 
-}  // namespace netmc::cli
+}  // namespace netmc::presets
