@@ -71,12 +71,7 @@ std::string CommissioningAxis::move(double target_m, double speed_m_s, double no
 std::string CommissioningAxis::jog(double speed_m_s, double now_s) {
   if (speed_m_s == 0.0) {
     if (motion_ == Motion::jogging) {
-      // To rest on the ramp from where the profile is now.
-      const double t = now_s - profile_start_s_;
-      const double p = profile_->position_m(t), v = profile_->velocity_m_s(t);
-      const double stop = std::clamp(p + v * std::abs(v) / (2.0 * settings_.acceleration_m_s2), limits_.position_min_m,
-                                     limits_.position_max_m);
-      plan(stop, std::max(std::abs(v), settings_.velocity_m_s), now_s);
+      plan_stop(now_s);
       motion_ = Motion::moving;
     }
     return "";
@@ -97,8 +92,7 @@ std::string CommissioningAxis::jog(double speed_m_s, double now_s) {
   // Towards the window's edge, where the ramp brings it to rest just inside.
   const double margin = 1e-3 * (limits_.position_max_m - limits_.position_min_m);
   const double edge = speed_m_s > 0.0 ? limits_.position_max_m - margin : limits_.position_min_m + margin;
-  // Where the axis is commanded to be now: on its profile, or where it holds.
-  const double at = profile_ ? profile_->position_m(now_s - profile_start_s_) : hold_m_;
+  const double at = commanded(now_s).first;
   if ((speed_m_s > 0.0 && at >= edge - 1e-9) || (speed_m_s < 0.0 && at <= edge + 1e-9)) {
     return fmt::format("the axis is at the window's {} edge ({:.6g} m)", speed_m_s > 0.0 ? "upper" : "lower", at);
   }
@@ -112,15 +106,7 @@ std::string CommissioningAxis::jog(double speed_m_s, double now_s) {
 
 void CommissioningAxis::disable(drive::Drive& drive, double now_s) {
   if (enabled(motion_)) {
-    double p = hold_m_, v = 0.0;
-    if (profile_) {
-      const double t = now_s - profile_start_s_;
-      p = profile_->position_m(t);
-      v = profile_->velocity_m_s(t);
-    }
-    const double stop = std::clamp(p + v * std::abs(v) / (2.0 * settings_.acceleration_m_s2), limits_.position_min_m,
-                                   limits_.position_max_m);
-    plan(stop, std::max(std::abs(v), settings_.velocity_m_s), now_s);
+    plan_stop(now_s);
     motion_ = Motion::stopping;
     return;
   }
@@ -143,15 +129,22 @@ void CommissioningAxis::release(const std::string& note) {
   note_ = note;
 }
 
+std::pair<double, double> CommissioningAxis::commanded(double now_s) const {
+  if (!profile_) return {hold_m_, 0.0};
+  const double t = now_s - profile_start_s_;
+  return {profile_->position_m(t), profile_->velocity_m_s(t)};
+}
+
+void CommissioningAxis::plan_stop(double now_s) {
+  const auto [p, v] = commanded(now_s);
+  const double stop = std::clamp(p + v * std::abs(v) / (2.0 * settings_.acceleration_m_s2), limits_.position_min_m,
+                                 limits_.position_max_m);
+  plan(stop, std::max(std::abs(v), settings_.velocity_m_s), now_s);
+}
+
 void CommissioningAxis::plan(double target_m, double speed_m_s, double now_s) {
-  double p = last_position_m_, v = 0.0;
-  if (profile_) {
-    const double t = now_s - profile_start_s_;
-    p = profile_->position_m(t);
-    v = profile_->velocity_m_s(t);
-  } else if (enabled(motion_)) {
-    p = hold_m_;
-  }
+  // From the profile (or the hold) of an enabled axis; an axis just enabled holds where it was read.
+  const auto [p, v] = profile_ || enabled(motion_) ? commanded(now_s) : std::pair{last_position_m_, 0.0};
   profile_.emplace(p, v, target_m, speed_m_s, settings_.acceleration_m_s2);
   profile_start_s_ = now_s;
   hold_m_ = target_m;

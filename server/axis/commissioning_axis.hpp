@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "server/drive/axis_limits.hpp"
 #include "server/drive/cia402.hpp"
@@ -59,8 +60,12 @@ class CommissioningAxis {
   const std::string& note() const { return note_; }
 
  private:
-  // The profile's position and velocity now (the last actual position where no profile runs).
+  // A new profile to `target_m`, from where the axis is commanded to be now.
   void plan(double target_m, double speed_m_s, double now_s);
+  // To rest on the acceleration limit from the commanded motion, inside the window.
+  void plan_stop(double now_s);
+  // Where the axis is commanded to be now and how fast: on its profile, or where it holds.
+  std::pair<double, double> commanded(double now_s) const;
 
   CommissioningSettings settings_;
   drive::AxisLimits limits_;
