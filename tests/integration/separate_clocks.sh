@@ -42,10 +42,10 @@ start_cluster() {
     --transport udp --interface "$S"
   t=(); [ "$xmono" = - ] || t=(--monotonic "$xmono")
   lab_start "x$tag" ax "${t[@]}" -- "$axis_bin" --node host-x --axes x --clock realtime \
-    --domain "$domain" --transport udp --interface "$(lab_addr ax)"
+    --domain "$domain" --transport udp --interface "$(lab_addr ax)" --watchdog 200
   t=(); [ "$ymono" = - ] || t=(--monotonic "$ymono")
   lab_start "y$tag" ay "${t[@]}" -- "$axis_bin" --node host-y --axes y --clock realtime \
-    --domain "$domain" --transport udp --interface "$(lab_addr ay)"
+    --domain "$domain" --transport udp --interface "$(lab_addr ay)" --watchdog 200
   lab_wait_log "server$tag" 'listening on' 10 || lab_fail "netmc-server$tag did not start"
   port=$(sed -n "s/.*listening on $S:\([0-9]*\).*/\1/p" "$tmp/server$tag.log")
 }
