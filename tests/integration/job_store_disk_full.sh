@@ -30,8 +30,10 @@ start server "$netmc_server" --listen 127.0.0.1:0 --domain "$domain" --transport
 server_pid=${pids[-1]}
 port=$(server_port 127.0.0.1)
 server=(--server "127.0.0.1:$port")
-long=$("$netmc" submit "${server[@]}" --quiet --controller adrc --iterations 300 --duration 4s)
-until "$netmc" status "$long" "${server[@]}" | grep -q "running  *[1-9][0-9]*/300"; do sleep 0.1; done
+# 60 iterations (about 11 s): long enough to fill the disk and be refused a submit while it runs.
+n=60
+long=$("$netmc" submit "${server[@]}" --quiet --controller adrc --iterations "$n" --duration 4s)
+until "$netmc" status "$long" "${server[@]}" | grep -q "running  *[1-9][0-9]*/$n"; do sleep 0.1; done
 # A watcher from any connection: what it is shown is what the store must hold after a restart.
 watch_code=0
 "$netmc" watch "$long" "${server[@]}" --quiet --json "$tmp/watched.json" >"$tmp/watch.txt" 2>&1 &
@@ -48,16 +50,16 @@ cat "$tmp/full.txt"
 kill -0 "$server_pid" || { echo "FAIL: the server died on a full disk"; exit 1; }
 # The running job's iterations can no longer be written; the job runs on to its last iteration,
 # and its end waits to be kept: its watcher is not told of what the store does not hold.
-until "$netmc" status "$long" "${server[@]}" | grep -q "^ *$long  *[a-z]*  *300/300"; do sleep 0.2; done
+until "$netmc" status "$long" "${server[@]}" | grep -q "^ *$long  *[a-z]*  *$n/$n"; do sleep 0.2; done
 sleep 1
 "$netmc" status "$long" "${server[@]}" | tail -1
-"$netmc" status "$long" "${server[@]}" | grep -q "^ *$long  *running  *300/300 .*waits for its end (done) to be written to the job store.*full" ||
+"$netmc" status "$long" "${server[@]}" | grep -q "^ *$long  *running  *$n/$n .*waits for its end (done) to be written to the job store.*full" ||
   { echo "FAIL: the job's end was told before it was kept, or its status does not say why it waits"; exit 1; }
 kill -0 "$watch_pid" 2>/dev/null || { echo "FAIL: the watcher was told of an end the store does not hold"; cat "$tmp/watch.txt"; exit 1; }
 grep "not written" "$tmp/server.log" | head -2
 failures=$(grep -c "not written" "$tmp/server.log")
 [ "$failures" -le 3 ] || { echo "FAIL: the store logged $failures failures, not each once"; exit 1; }
-echo "disk full: job $long ran 300/300, its end waits to be kept; the watcher waits too; $failures failure(s) logged"
+echo "disk full: job $long ran $n/$n, its end waits to be kept; the watcher waits too; $failures failure(s) logged"
 integrity "on the full disk"
 
 # Room again: the waiting writes are kept (within the longest backoff, 2 s), then told.
@@ -75,7 +77,7 @@ until "$netmc" status "$again" "${server[@]}" | grep -q "^ *$again  *done"; do s
   { echo "FAIL: the job accepted after the disk had room again is not kept"; exit 1; }
 echo "room again: job $again accepted, run and kept"
 
-# A restart: the store's history of job $long is what its watcher saw (done, 300 iterations, no
+# A restart: the store's history of job $long is what its watcher saw (done, all its iterations, no
 # error), from the server (netmc jobs, netmc watch) and from the store itself (--state-dir).
 kill -TERM "$server_pid"
 wait "$server_pid" || true
@@ -88,9 +90,9 @@ done
 "$netmc" jobs "${server[@]}" --json >"$tmp/jobs.json"
 "$netmc" jobs --state-dir "$state" --json >"$tmp/jobs-offline.json"
 "$netmc" watch "$long" "${server[@]}" --quiet --json "$tmp/rewatched.json" >/dev/null
-/usr/bin/python3 - "$tmp" "$long" <<'PY' ||
+/usr/bin/python3 - "$tmp" "$long" "$n" <<'PY' ||
 import json, sys
-tmp, job = sys.argv[1], int(sys.argv[2])
+tmp, job, iterations = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 watched = json.load(open(f"{tmp}/watched.json"))
 seen = len(watched["runs"][0]["iterations"]) if "runs" in watched else None
 bad = []
@@ -100,12 +102,12 @@ for name in ("jobs.json", "jobs-offline.json"):
     kept = {"state": record.get("state"), "error": record.get("error", ""), "iterations_done": record.get("iterations_done")}
     print(f"{name}: {kept}; the watcher saw {told}")
     if kept != told: bad.append(name)
-sys.exit(1 if bad or seen != 300 else 0)
+sys.exit(1 if bad or seen != iterations else 0)
 PY
   { echo "FAIL: after a restart the store's history of job $long is not what its watcher saw"; exit 1; }
 cmp -s "$tmp/watched.json" "$tmp/rewatched.json" ||
   { echo "FAIL: netmc watch --json of job $long after the restart differs from what its watcher saw"; exit 1; }
-echo "restart: job $long done 300/300 in netmc jobs, netmc jobs --state-dir and netmc watch --json, as its watcher saw"
+echo "restart: job $long done $n/$n in netmc jobs, netmc jobs --state-dir and netmc watch --json, as its watcher saw"
 
 # A store that is read-only (a disk mounted so; an open database keeps its mount writable, so the
 # server stops first): a server started on it says why and exits 2.

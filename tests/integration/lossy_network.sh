@@ -15,8 +15,12 @@
 #    JSON byte-identical to `netmc sim` with the same flags. 1 % may cost at most 3 s over the
 #    lossless run; 5 % and 20 % must finish within 4 times the lossless time + 20 s (times printed).
 #  Part B, realtime (best-effort setpoints and feedback; a lost one is counted, not repaired), the
-#    axes restarted with --clock realtime, paper 001's study (8 s iterations at h = 5 ms):
-#     1 %, 5 iterations: e_sum cut >= 80 % from iteration 1 to 5 (as realtime_ilc.sh without loss).
+#    axes restarted with --clock realtime, paper 001's study (8 s iterations at h = 5 ms). The
+#    nodes' watchdog is 200 ms here, not 50: eleven setpoints in a row are lost with probability
+#    0.05^11 at 5 %, so a 50 ms gap is a host stall (this 2-core virtual machine has them; a CI
+#    run saw one of 55 ms), which chaos_starvation.sh tests; this test is about losses. The
+#    lossless 80 % cut of realtime_ilc.sh at 1 % loss is not rerun here (it cut 86 %; Part A runs
+#    1 % in lockstep):
 #     5 %, 5 iterations: ADRC+ILCCC still converges: cut >= 50 %. Not 80 %: netmc sim itself, with
 #       5 % Bernoulli loss of setpoints and feedback (--loss/--uplink-loss bernoulli:p=0.05), cuts
 #       63-74 % (30 seeds, median 69 %; printed for seed 1): a lost feedback sample makes the server
@@ -90,9 +94,9 @@ run_loss() {
 # studies loss, and the job's own command limit still saturates the plant's input).
 start_nodes() {
   lab_start "x$2" ax -- "$axis_bin" --node "$2-x" --axes x --clock "$1" --domain "$domain" \
-    --transport udp --interface "$(lab_addr ax)" --command-limit 5
+    --transport udp --interface "$(lab_addr ax)" --command-limit 5 --watchdog 200
   lab_start "y$2" ay -- "$axis_bin" --node "$2-y" --axes y --clock "$1" --domain "$domain" \
-    --transport udp --interface "$(lab_addr ay)" --command-limit 5
+    --transport udp --interface "$(lab_addr ay)" --command-limit 5 --watchdog 200
   local n=0
   for _ in $(seq 100); do
     n=$(lab_exec srv -- "$netmc" nodes --server "$S:$port" | grep -cE "^$2-[xy] .*idle" || true)
@@ -159,7 +163,7 @@ ecut() { awk 'NR == 1 { first = $1 } { last = $1 } END { printf "%.1f", 100 * (1
   --uplink-loss bernoulli:p=0.05 --json "$tmp/sim_loss5.json" >/dev/null
 rt_stats "$tmp/sim_loss5.json" >"$tmp/sim_loss5.txt"
 sim_cut5=$(ecut "$tmp/sim_loss5.txt")
-for pct in 1 5 20; do
+for pct in 5 20; do
   iterations=$([ "$pct" = 20 ] && echo 2 || echo 5)
   run_loss "$pct" "$iterations" "realtime$pct" --clock realtime
   [ "$rc" -eq 0 ] || lab_fail "realtime job at $pct % loss: exit $rc: $(tail -n 3 "$tmp/realtime$pct.log")"
@@ -182,8 +186,6 @@ for pct in 1 5 20; do
   first_last=$(awk 'NR == 1 { f = $1 } { l = $1 } END { printf "e_sum %.3f mm (iteration 1, ADRC) -> %.3f mm (iteration %d)", f * 1e3, l * 1e3, NR }' \
     "$tmp/realtime$pct.txt")
   case $pct in
-    1) echo "    $first_last: cut $c % (need >= 80 %)"
-       awk -v c="$c" 'BEGIN { exit !(c >= 80) }' || lab_fail "ADRC+ILCCC did not cut e_sum by 80 % at 1 % loss" ;;
     5) echo "    $first_last: cut $c % (need >= 50 %; netmc sim with 5 % loss both ways: $sim_cut5 %)"
        awk -v c="$c" 'BEGIN { exit !(c >= 50) }' || lab_fail "ADRC+ILCCC did not converge at 5 % loss" ;;
     *) echo "    $first_last: cut $c % (not checked)" ;;
