@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <thread>
 
 #include "server/drive/cia402.hpp"
 #include "server/drive/modbus/duration_text.hpp"
@@ -79,6 +80,7 @@ DriveEmulator::DriveEmulator(std::unique_ptr<plant::AxisPlant> plant, EmulatedDr
                                 "'");
   }
   logged_state_ = drive_.state();
+  actual_position_m_.store(drive_.position());
 
   // The image libmodbus answers from covers the map's registers, first to last.
   std::uint32_t first = 65535, last = 0;
@@ -138,6 +140,7 @@ void DriveEmulator::advance(double now) {
   }
   drive_.advance_to(now);
   drive_.check_model();
+  actual_position_m_.store(drive_.position());
   log_state_change();
 }
 
@@ -267,12 +270,38 @@ void DriveEmulator::reply_exception(const std::uint8_t* frame, std::uint8_t code
   }
 }
 
+void DriveEmulator::freeze_feedback(std::uint16_t address, std::uint16_t count, std::uint16_t* words) {
+  if (frozen_words_.empty()) {
+    for (const auto object : {modbus::DriveObject::position_actual, modbus::DriveObject::velocity_actual}) {
+      const auto& placement = map_.find(object);
+      if (!placement) continue;
+      std::array<std::uint16_t, 2> now{};
+      registers_.read(placement->address, placement->count(), now.data());
+      for (std::uint16_t i = 0; i < placement->count(); ++i) {
+        frozen_words_.emplace_back(static_cast<std::uint16_t>(placement->address + i), now[i]);
+      }
+    }
+  }
+  for (const auto& [register_address, word] : frozen_words_) {
+    if (register_address >= address && register_address < address + count) words[register_address - address] = word;
+  }
+}
+
 void DriveEmulator::handle_request(std::uint8_t* frame, std::size_t size) {
   ++requests_;
+  const double arrived = now_s();
+  const bool failing =
+      settings_.fault && first_connection_s_ && arrived >= *first_connection_s_ + settings_.fault->after_s;
+  if (failing && settings_.fault->kind == InjectedFault::Kind::slow) {
+    // A drive that takes this long to answer: the request is served, and answered, only then.
+    // Its arrival feeds the watchdog (the drive heard its master).
+    advance(arrived);
+    if (frame[kHeaderLength - 1] == unit_) last_request_s_ = arrived;
+    std::this_thread::sleep_for(std::chrono::duration<double>(settings_.fault->delay_s));
+  }
   const double now = now_s();
   advance(now);
   const std::uint8_t unit = frame[kHeaderLength - 1];
-  const bool failing = settings_.fault && first_connection_s_ && now >= *first_connection_s_ + settings_.fault->after_s;
   if (failing) {
     if (!fault_announced_) {
       spdlog::warn("injected fault from now on: {}", settings_.fault->describe());
@@ -293,7 +322,9 @@ void DriveEmulator::handle_request(std::uint8_t* frame, std::size_t size) {
   }
   last_request_s_ = now;  // the watchdog is fed by requests for this drive
   // The wrong-unit fault: served, but answered for another unit.
-  if (failing) frame[kHeaderLength - 1] = static_cast<std::uint8_t>(unit_ + 1);
+  if (failing && settings_.fault->kind == InjectedFault::Kind::wrong_unit) {
+    frame[kHeaderLength - 1] = static_cast<std::uint8_t>(unit_ + 1);
+  }
   const std::uint8_t function = frame[kHeaderLength];
   const std::uint8_t* pdu = frame + kHeaderLength;
   const std::size_t pdu_size = size - kHeaderLength;
@@ -310,6 +341,7 @@ void DriveEmulator::handle_request(std::uint8_t* frame, std::size_t size) {
       std::array<std::uint16_t, MODBUS_MAX_READ_REGISTERS> words{};
       const RegisterAccess access = registers_.read(address, count, words.data());
       if (!access.ok()) return reply_exception(frame, access.exception, access.why);
+      if (failing && settings_.fault->kind == InjectedFault::Kind::frozen) freeze_feedback(address, count, words.data());
       std::copy(words.begin(), words.begin() + count, image_->tab_registers + (address - image_start_));
       return reply(frame, size);
     }

@@ -17,6 +17,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "plant/axis_plant.hpp"
 #include "server/drive/emulated_drive.hpp"
@@ -54,6 +56,10 @@ class DriveEmulator {
   std::string address() const;  // "127.0.0.1:1502"
   std::uint8_t unit() const { return unit_; }
 
+  // The drive's actual position when it was last advanced, whatever its registers say (the
+  // frozen fault): for a test on another thread.
+  double actual_position_m() const { return actual_position_m_.load(); }
+
   // Serves until `stop` is set (seen within one cycle), then closes the master's connection.
   void serve(const std::atomic<bool>& stop);
 
@@ -71,6 +77,9 @@ class DriveEmulator {
   // Answers with libmodbus; `frame` is the request (its unit byte the one to answer with).
   void reply(const std::uint8_t* frame, std::size_t size);
   void reply_exception(const std::uint8_t* frame, std::uint8_t code, const std::string& why);
+  // The frozen fault: the actual position and velocity in `words` (registers from `address`) as
+  // they were when it began.
+  void freeze_feedback(std::uint16_t address, std::uint16_t count, std::uint16_t* words);
 
   modbus::ModbusMap map_;
   EmulatedDrive drive_;
@@ -95,6 +104,9 @@ class DriveEmulator {
   std::uint64_t refusals_ = 0;
   double refusal_logged_s_ = -1.0;  // refusals are logged at most once a second
   std::uint64_t refusals_unlogged_ = 0;
+  // The frozen fault's registers (address, word), captured when it began.
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> frozen_words_;
+  std::atomic<double> actual_position_m_{0.0};
 };
 
 }  // namespace netmc::drive::emulator

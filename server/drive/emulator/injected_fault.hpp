@@ -10,11 +10,12 @@
 namespace netmc::drive::emulator {
 
 struct InjectedFault {
-  enum class Kind { exception, wrong_unit, silence };
+  enum class Kind { exception, wrong_unit, silence, slow, frozen };
   double after_s = 0.0;
   Kind kind = Kind::exception;
+  double delay_s = 0.0;  // slow: how late every answer is
 
-  std::string describe() const;  // "exception after 200 ms"
+  std::string describe() const;  // "exception from 200 ms after the first connection"
 };
 
 const char* injected_fault_kind_name(InjectedFault::Kind kind);  // "wrong-unit"

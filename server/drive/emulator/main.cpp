@@ -112,7 +112,9 @@ int main(int argc, char** argv) {
   app.add_option("--initial-position", initial_position, "Where the axis rests at start, metres")->capture_default_str();
   app.add_option("--fail-after", fail_after,
                  "Injected fault DURATION:KIND from DURATION after the first master connects: exception (Modbus "
-                 "exception 4 to every request), wrong-unit (answers for another unit id), silence (no answers)");
+                 "exception 4 to every request), wrong-unit (answers for another unit id), silence (no answers), "
+                 "slow=DELAY (every answer DELAY late: 2s:slow=40ms), frozen (the actual position and velocity "
+                 "registers keep their values while the drive moves on)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
