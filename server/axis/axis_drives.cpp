@@ -100,6 +100,7 @@ std::map<std::string, AxisDrive> open_axis_drives(const std::map<std::string, dr
       entry.limits = flags.or_else(entry.hardware->configured_limits());
       require_limits(entry.limits, axis, spec, "a drive that is not simulated");
     }
+    entry.limits = entry.limits.with_default_following_error();
     entry.limits.validate();
     drives.emplace(axis, std::move(entry));
   }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "server/drive/drive_spec.hpp"
+#include "server/job/quantity_text.hpp"
 
 namespace netmc::axis {
 namespace {
@@ -58,6 +59,17 @@ std::map<std::string, drive::AxisLimits> parse_axis_limits(const AxisLimitFlags&
              positive(&drive::AxisLimits::velocity_m_s));
   apply_flag(flags.slew, "--slew-limit", "a positive number R (units/s)", axes, limits,
              positive(&drive::AxisLimits::slew_per_s));
+  apply_flag(flags.following_error, "--following-error-limit", "a positive length such as 2mm", axes, limits,
+             [](drive::AxisLimits& target, const std::string& text) {
+               try {
+                 const double value = job::parse_quantity(text, job::Quantity::length, "--following-error-limit");
+                 if (!(value > 0.0) || !std::isfinite(value)) return false;
+                 target.following_error_m = value;
+                 return true;
+               } catch (const std::invalid_argument&) {
+                 return false;
+               }
+             });
   apply_flag(flags.position_window, "--position-window", "MIN:MAX (m, MIN < MAX)", axes, limits,
              [](drive::AxisLimits& target, const std::string& text) {
                const std::size_t colon = text.find(':', 1);  // MIN may be negative

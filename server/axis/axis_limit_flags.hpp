@@ -17,6 +17,7 @@ struct AxisLimitFlags {
   std::string position_window;  // --position-window MIN:MAX (m)
   std::string velocity;         // --velocity-limit V (m/s)
   std::string slew;             // --slew-limit R (units/s)
+  std::string following_error;  // --following-error-limit LENGTH (2mm, 0.002)
 };
 
 // The limits of each of `axes` (an axis no flag names has none). Throws std::invalid_argument

@@ -508,6 +508,7 @@ JobAxis AxisNodeLink::start_job(const netmc::dds::JobControl& begin) {
   JobAxis axis;
   axis.endpoint = std::make_unique<sim::AxisEndpoint>(job_drive(axis_drive, job, index, config_.drive_settings), job,
                                                       index, axis_drive.limits);
+  axis.endpoint->follow_job_reference(job);
   axis.job_id = begin.job_id();
   axis.cycles = job.cycles();
   axis.sample_period_s = job.sample_period_s;

@@ -117,6 +117,14 @@ int main(int argc, char** argv) {
                  "x=-0.05:0.25,y=0:0.45; default for a simulated drive: its plant's travel)");
   app.add_option("--velocity-limit", limit_flags.velocity,
                  "Largest |velocity| in m/s; beyond it trips the axis (V, or AXIS=V entries)");
+  app.add_option("--following-error-limit", limit_flags.following_error,
+                 "Largest |reference - actual position| during a job's iterations; beyond it trips the axis "
+                 "(LENGTH such as 2mm, or AXIS=LENGTH entries; default where the axis has a position window and a "
+                 "velocity limit: a tenth of the window, at most the travel of 0.1 s at the velocity limit, at least "
+                 "1 mm). The same samples trip on frozen feedback (position and velocity repeated bit for bit over 3 "
+                 "samples while the reference moves faster than 20 mm/s) and on jumps (a step beyond the velocity "
+                 "limit x the time between samples x 1.5); a drive on its own time must fit each cycle's exchange "
+                 "in the job's period");
   app.add_option("--slew-limit", limit_flags.slew,
                  "Largest change of the applied command per second (units/s): steps are ramped, not tripped "
                  "(R, or AXIS=R entries)");

@@ -77,6 +77,10 @@ class Drive {
     (void)position_m;
     return false;
   }
+  // The longest a job's cycle may wait for the drive (s; 0: no budget, the drive's own
+  // timeouts): a drive with a fieldbus bounds each exchange's wait by it and fails a cycle that
+  // does not fit (DriveError naming the time and the budget). Others ignore it.
+  virtual void set_cycle_budget(double budget_s) { (void)budget_s; }
   // Quick stop and fault reaction deceleration (0x6085), m/s^2.
   virtual void write_quick_stop_deceleration(double deceleration_m_s2) = 0;
   // What the drive measured of its own exchanges since the last call, for the node's log once

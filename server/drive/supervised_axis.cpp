@@ -8,8 +8,50 @@
 namespace netmc::drive {
 
 SupervisedAxis::SupervisedAxis(std::shared_ptr<Drive> drive, double command_limit, AxisLimits limits)
-    : drive_(std::move(drive)), mode_(drive_->job_mode()), command_limit_(command_limit), limits_(limits) {
+    : drive_(std::move(drive)),
+      mode_(drive_->job_mode()),
+      command_limit_(command_limit),
+      limits_(limits),
+      supervision_(limits.following_error_m, limits.velocity_m_s, !drive_->virtual_time()) {
   limits_.validate();
+}
+
+SupervisedAxis::~SupervisedAxis() {
+  if (drive_) set_cycle_budget(0.0);
+}
+
+void SupervisedAxis::follow_reference(std::function<double(double)> reference_m, double sample_period_s) {
+  reference_m_ = std::move(reference_m);
+  sample_period_s_ = sample_period_s;
+}
+
+void SupervisedAxis::set_cycle_budget(double budget_s) {
+  if (drive_->virtual_time() || (budget_s == 0.0 && !budget_set_)) return;
+  try {
+    drive_->set_cycle_budget(budget_s);
+    budget_set_ = budget_s > 0.0;
+  } catch (const DriveError& error) {
+    trip(error.what());
+  }
+}
+
+void SupervisedAxis::end_iteration() {
+  running_ = false;
+  set_cycle_budget(0.0);
+}
+
+void SupervisedAxis::check_feedback(double time_s) {
+  if (!reference_m_ || !running_ || fault_) return;
+  SupervisedSample sample;
+  sample.cycle = static_cast<std::uint64_t>(std::llround(time_s / sample_period_s_));
+  // A drive on its own time was read now: a jump is judged over the time that really passed.
+  sample.time_s = drive_->virtual_time()
+                      ? time_s
+                      : std::chrono::duration<double>(std::chrono::steady_clock::now() - epoch_).count();
+  sample.reference_m = reference_m_(time_s);
+  sample.position_m = reading_.position_m;
+  sample.velocity_m_s = reading_.velocity_m_s;
+  if (const auto reason = supervision_.check(sample)) trip(*reason);
 }
 
 void SupervisedAxis::trip(const std::string& reason) {
@@ -19,7 +61,7 @@ void SupervisedAxis::trip(const std::string& reason) {
   try {
     drive_->write_controlword(controlword::quick_stop);
   } catch (const DriveError& error) {
-    *fault_ += fmt::format("; quick stop not sent: {}", error.what());
+    *fault_ += fmt::format("; quick stop not confirmed: {}", error.what());
   }
 }
 
@@ -104,6 +146,8 @@ void SupervisedAxis::begin_iteration(double position_m) {
   refresh();
   const auto state = decode_statusword(reading_.statusword);
   running_ = !fault_ && state == PowerState::operation_enabled;
+  supervision_.begin();
+  if (running_ && reference_m_) set_cycle_budget(sample_period_s_);
   if (!fault_ && !running_) {
     trip(fmt::format("the drive is not in Operation enabled at the start of the iteration: {} (error {})",
                      state ? power_state_name(*state) : "no CiA 402 state", describe_error_code(reading_.error_code)));
@@ -192,6 +236,7 @@ const DriveFeedback& SupervisedAxis::sample(double time_s) {
     trip(error.what());
   }
   refresh();
+  check_feedback(time_s);
   return reading_;
 }
 

@@ -4,7 +4,9 @@
 // number; a command that is not finite or beyond the operator's limit trips the axis, a legal one
 // is clamped to the job's saturation and ramped by the slew limit; a position outside the travel
 // window, a velocity beyond the limit or a drive that leaves Operation enabled on its own trips
-// it too. A trip latches a fault (the first reason) and commands the drive's quick stop: the
+// it too; so does, while it follows a job's reference (follow_reference), a following error
+// beyond the limit or implausible feedback (FeedbackSupervision), and a drive exchange that does
+// not fit the job's period (Drive::set_cycle_budget). A trip latches a fault (the first reason) and commands the drive's quick stop: the
 // drive ramps to standstill and the axis shows CiA 402 Fault until the operator resets it.
 //
 // Time: a virtual-time drive (netmc's simulation) is integrated to each setpoint's arrival and to
@@ -12,7 +14,9 @@
 // [t_k, t_k + tau) the previous input still acts). A drive on its own time is written as
 // setpoints arrive and read at the samples.
 
+#include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +27,7 @@
 #include "server/drive/axis_limits.hpp"
 #include "server/drive/cia402.hpp"
 #include "server/drive/drive.hpp"
+#include "server/drive/feedback_supervision.hpp"
 
 namespace netmc::drive {
 
@@ -35,6 +40,16 @@ class SupervisedAxis {
 
   // `command_limit`: the job's drive saturation (clamps); `limits`: the axis operator's (trip).
   SupervisedAxis(std::shared_ptr<Drive> drive, double command_limit, AxisLimits limits = {});
+  // Leaves a drive on its own time without the job's cycle budget.
+  ~SupervisedAxis();
+  SupervisedAxis(SupervisedAxis&&) = default;
+  SupervisedAxis& operator=(SupervisedAxis&&) = delete;
+
+  // The job's reference for this axis (position at a job time, s), sampled every
+  // `sample_period_s`: from the next iteration on, each sample is checked against it (following
+  // error, frozen or jumping feedback), and a drive on its own time must fit each cycle's exchange
+  // in the period (its cycle budget, for the iterations).
+  void follow_reference(std::function<double(double)> reference_m, double sample_period_s);
 
   // A new iteration from rest at `position_m`. A virtual-time drive restarts there and is enabled
   // at once (a latched fault stays: only the operator clears it); a drive on its own time must
@@ -65,7 +80,7 @@ class SupervisedAxis {
   // `time_s` (for a velocity it differentiates); a failure or a limit trips.
   const DriveFeedback& poll(double time_s);
   // The iteration is over: setpoints no longer act (the drive keeps its state).
-  void end_iteration() { running_ = false; }
+  void end_iteration();
   // While the node moves the axis back to a start inside the travel window (after a trip left it
   // outside), being outside is no trip as long as it does not move further out: a software
   // limit switch lets the axis back in.
@@ -93,6 +108,8 @@ class SupervisedAxis {
   void check_state();
   void enable_now();     // virtual time: controlwords to Operation enabled, synchronously
   void apply_one(const Delivery& delivery);
+  void check_feedback(double time_s);  // against the reference, in a running iteration
+  void set_cycle_budget(double budget_s);
 
   std::shared_ptr<Drive> drive_;
   OperationMode mode_;
@@ -110,6 +127,11 @@ class SupervisedAxis {
   bool job_mode_pending_ = false;  // a drive on its own time takes the job's mode at the next sample
   bool return_allowed_ = false;
   std::optional<std::string> fault_;
+  std::function<double(double)> reference_m_;  // empty: no job reference to follow
+  double sample_period_s_ = 0.0;
+  FeedbackSupervision supervision_;
+  std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
+  bool budget_set_ = false;
 };
 
 }  // namespace netmc::drive

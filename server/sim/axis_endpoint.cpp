@@ -25,6 +25,15 @@ std::shared_ptr<drive::Drive> AxisEndpoint::simulated_drive(const ContourJob& jo
   return simulated;
 }
 
+void AxisEndpoint::follow_job_reference(const ContourJob& job) {
+  axis_.follow_reference(
+      [contour = job.contour(), index = index_, point = control::GroupReference{}](double time_s) mutable {
+        contour->sample(time_s, point);
+        return point.position(static_cast<Eigen::Index>(index));
+      },
+      job.sample_period_s);
+}
+
 void AxisEndpoint::begin_iteration(std::size_t iteration, double start_position_m) {
   axis_.begin_iteration(start_position_m);
   planned_.clear();

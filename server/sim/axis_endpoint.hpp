@@ -46,6 +46,11 @@ class AxisEndpoint {
   // netmc's simulated drive of the job's plant for axis `axis`.
   static std::shared_ptr<drive::Drive> simulated_drive(const ContourJob& job, std::size_t axis);
 
+  // The axis node's supervision against the job (netmc-axis; in-process runs leave it out, so
+  // their results stay those of the papers' loops): each sample is checked against the job's
+  // reference for this axis at its instant (following error, frozen or jumping feedback), and
+  // a drive on its own time must fit each cycle's exchange in the job's period.
+  void follow_job_reference(const ContourJob& job);
   // Every iteration starts from rest at `start_position_m` with nothing in flight.
   void begin_iteration(std::size_t iteration, double start_position_m);
   AxisSample sample();

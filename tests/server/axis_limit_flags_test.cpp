@@ -76,3 +76,23 @@ TEST(AxisLimitFlags, BadEntriesNameTheFlagTheAxisAndTheForm) {
 
 }  // namespace
 }  // namespace netmc::axis
+
+namespace netmc::axis {
+namespace {
+
+TEST(AxisLimitFlags, TheFollowingErrorLimitTakesALengthWithItsUnit) {
+  AxisLimitFlags flags;
+  flags.following_error = "2mm,z-2=0.5mm";
+  const auto limits = parse_axis_limits(flags, kAxes);
+  EXPECT_DOUBLE_EQ(limits.at("stage1.x").following_error_m, 0.002);
+  EXPECT_DOUBLE_EQ(limits.at("z-2").following_error_m, 0.0005);
+  EXPECT_EQ(describe_axis_limits(limits, {"stage1.y"}), "stage1.y: following error 2 mm");
+  for (const std::string bad : {"stage1.y=0mm", "-2mm", "2 parsecs", "stage1.y="}) {
+    flags.following_error = bad;
+    EXPECT_NE(error_of(flags).find("--following-error-limit"), std::string::npos) << bad << ": " << error_of(flags);
+    EXPECT_NE(error_of(flags).find("a positive length such as 2mm"), std::string::npos) << bad;
+  }
+}
+
+}  // namespace
+}  // namespace netmc::axis
