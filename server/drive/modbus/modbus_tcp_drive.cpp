@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <utility>
 
 #include "server/drive/cia402.hpp"
 #include "server/drive/modbus/duration_text.hpp"
@@ -166,18 +167,34 @@ void ModbusTcpDrive::connect(std::chrono::milliseconds connect_timeout, const st
 
 void ModbusTcpDrive::disconnect() noexcept { context_.reset(); }
 
+void ModbusTcpDrive::set_cycle_budget(double budget_s) {
+  budget_s_ = budget_s > 0.0 && std::isfinite(budget_s) ? budget_s : 0.0;
+  cycle_waited_s_ = 0.0;
+}
+
+double ModbusTcpDrive::wait_limit_s() const {
+  if (budget_s_ <= 0.0) return timeout_s_;
+  // At least 100 us: libmodbus takes no zero timeout, and a request past the budget still leaves.
+  return std::max(1e-4, std::min(timeout_s_, budget_s_ - cycle_waited_s_));
+}
+
 void ModbusTcpDrive::ensure_connected(const std::string& operation) {
   if (context_) return;
   if (!attempted_) throw DriveError(operation + ": the drive is not open");
   const auto since = Clock::now() - last_connect_attempt_;
-  if (since < kReconnectInterval) {
+  const bool at_once = std::exchange(reconnect_at_once_, false);
+  if (since < kReconnectInterval && !at_once) {
     const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(kReconnectInterval - since).count();
     statistics_.record_failure();
     throw DriveError(fmt::format("{}: not connected ({}); next attempt in {} ms", operation, last_link_failure_, wait));
   }
+  if (!at_once) cycle_waited_s_ = 0.0;  // a cycle of its own
+  // Within the cycle's budget too (whole milliseconds, at least one).
+  const auto connect_timeout = std::max(std::chrono::milliseconds(1),
+                                        std::chrono::ceil<std::chrono::milliseconds>(
+                                            std::chrono::duration<double>(wait_limit_s())));
   try {
-    connect(std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::duration<double>(timeout_s_)),
-            operation);
+    connect(connect_timeout, operation);
   } catch (const DriveError&) {
     statistics_.record_failure();
     throw;
@@ -197,6 +214,8 @@ std::size_t ModbusTcpDrive::exchange(const std::uint8_t* pdu, std::size_t pdu_le
   std::array<std::uint8_t, 254> request{};  // unit + PDU (at most 253 bytes)
   request[0] = unit_;
   std::copy(pdu, pdu + pdu_length, request.begin() + 1);
+  const double limit_s = wait_limit_s();
+  set_timeout(context_.get(), limit_s);
   const auto start = Clock::now();
   // A raw request: libmodbus frames it (transaction id 0) and hands back the whole answer, which
   // is checked here, its unit id included.
@@ -204,8 +223,16 @@ std::size_t ModbusTcpDrive::exchange(const std::uint8_t* pdu, std::size_t pdu_le
     fail_link(operation, std::string("sending failed: ") + modbus_strerror(errno));
   }
   const int length = modbus_receive_confirmation(context_.get(), answer_.data());
+  const double waited_s = std::chrono::duration<double>(Clock::now() - start).count();
+  cycle_waited_s_ += waited_s;
   if (length == -1) {
     const int error = errno;
+    if (error == ETIMEDOUT && limit_s < timeout_s_) {
+      // The drive is slow, the link may be sound: the trip's quick stop goes out at once.
+      reconnect_at_once_ = true;
+      fail_link(operation, fmt::format("drive exchange took {} without an answer, over the {} cycle budget",
+                                       format_duration(cycle_waited_s_), format_duration(budget_s_)));
+    }
     if (error == ETIMEDOUT) fail_link(operation, "timeout after " + format_duration(timeout_s_));
     if (error == ECONNRESET) fail_link(operation, "connection closed by the drive");
     if (error == EMBBADDATA) fail_link(operation, "malformed answer (more data than its function allows)");
@@ -337,6 +364,7 @@ DriveFeedback ModbusTcpDrive::read() {
     take(DriveObject::position_actual, [&](double v) { feedback.position_m = v; });
     take(DriveObject::velocity_actual, [&](double v) { feedback.velocity_m_s = v; });
   }
+  cycle_waited_s_ = 0.0;  // the cycle's exchange is complete
   return feedback;
 }
 

@@ -13,6 +13,14 @@
 // A failure of the link (anything but a Modbus exception) closes the connection, so no late
 // answer to one request is taken for the next. The next call connects again, at most once per
 // 200 ms; the call that failed has thrown first, so a reconnect never passes unnoticed in a job.
+//
+// A job's cycle budget (set_cycle_budget, the job's period): the requests of one cycle, from the
+// end of one read() to the end of the next (the setpoint's write and the feedback's read), wait
+// for their answers at most the budget together. One that runs out fails as "drive exchange took
+// 5.08 ms without an answer, over the 5 ms cycle budget" and closes the connection; the next
+// request (the trip's quick stop) connects again at once, without the 200 ms pause, and is sent
+// with what is left of the cycle's budget: one slow drive costs its node's other axes at most one
+// budget per cycle.
 
 #include <array>
 #include <chrono>
@@ -59,6 +67,7 @@ class ModbusTcpDrive final : public Drive {
   // Skipped when the map places no quick stop deceleration.
   void write_quick_stop_deceleration(double deceleration_m_s2) override;
   std::string take_exchange_statistics() override { return statistics_.take_summary("modbus"); }
+  void set_cycle_budget(double budget_s) override;
 
   const ModbusMap& map() const { return map_; }
   bool connected() const { return context_ != nullptr; }
@@ -85,6 +94,9 @@ class ModbusTcpDrive final : public Drive {
   void read_registers(const ReadBlock& block, std::uint16_t* words);
   void write_object(DriveObject object, double value);
   [[noreturn]] void fail_link(const std::string& operation, const std::string& cause);
+  // How long the next request may wait for its answer: the timeout, or what is left of the
+  // cycle's budget when that is shorter.
+  double wait_limit_s() const;
 
   std::string host_;
   std::uint16_t port_;
@@ -100,6 +112,9 @@ class ModbusTcpDrive final : public Drive {
   std::array<std::uint16_t, 128> read_words_{};  // a read block's registers, from its first
   std::array<std::uint8_t, 260> answer_{};       // MODBUS_TCP_MAX_ADU_LENGTH
   ExchangeStatistics statistics_;
+  double budget_s_ = 0.0;          // 0: none
+  double cycle_waited_s_ = 0.0;    // waited for answers since the last read() ended
+  bool reconnect_at_once_ = false;  // the last failure was the budget's, not the link's
 };
 
 }  // namespace netmc::drive::modbus

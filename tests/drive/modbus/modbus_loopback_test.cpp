@@ -26,90 +26,10 @@
 #include "server/drive/modbus/modbus_tcp_drive.hpp"
 #include "tests/drive/power_state_printer.hpp"
 #include "tests/drive/linear_servo_plant.hpp"
+#include "tests/drive/modbus/running_emulator.hpp"
 
 namespace netmc::drive {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-using emulator::DriveEmulator;
-using emulator::DriveEmulatorSettings;
-using emulator::InjectedFault;
-using modbus::ModbusTcpDrive;
-
-
-double seconds_between(Clock::time_point from, Clock::time_point to) {
-  return std::chrono::duration<double>(to - from).count();
-}
-
-// An emulator serving on a thread of this process until destroyed.
-class RunningEmulator {
- public:
-  explicit RunningEmulator(DriveEmulatorSettings settings = quiet(), std::uint16_t port = 0) {
-    settings.listen_host = "127.0.0.1";
-    settings.listen_port = port;
-    emulator_ = std::make_unique<DriveEmulator>(linear_servo_plant(), EmulatedDriveSettings{}, modbus::default_modbus_map(),
-                                                settings);
-    thread_ = std::thread([this] { emulator_->serve(stop_); });
-  }
-  ~RunningEmulator() {
-    stop_.store(true);
-    thread_.join();
-  }
-  std::uint16_t port() const { return emulator_->port(); }
-
-  // No watchdog: a test may pause without requests.
-  static DriveEmulatorSettings quiet() {
-    DriveEmulatorSettings settings;
-    settings.watchdog_s = 0.0;
-    return settings;
-  }
-  static DriveEmulatorSettings failing(InjectedFault::Kind kind, double after_s) {
-    DriveEmulatorSettings settings = quiet();
-    settings.fault = InjectedFault{after_s, kind};
-    return settings;
-  }
-
- private:
-  std::atomic<bool> stop_{false};
-  std::unique_ptr<DriveEmulator> emulator_;
-  std::thread thread_;
-};
-
-std::unique_ptr<ModbusTcpDrive> master_of(std::uint16_t port, double timeout_s = 0.2,
-                                          std::optional<std::uint8_t> unit = std::nullopt) {
-  modbus::ModbusTcpSpec spec;
-  spec.host = "127.0.0.1";
-  spec.port = port;
-  spec.timeout_s = timeout_s;
-  spec.unit = unit;
-  return std::make_unique<ModbusTcpDrive>(spec, modbus::default_modbus_map());
-}
-
-PowerState state_of(Drive& drive) {
-  const auto state = decode_statusword(drive.read().statusword);
-  EXPECT_TRUE(state.has_value());
-  return state.value_or(PowerState::not_ready_to_switch_on);
-}
-
-// The master's way to Operation enabled: controlword_towards until there.
-void enable(Drive& drive) {
-  for (int step = 0; step < 5; ++step) {
-    const auto word = controlword_towards(state_of(drive), PowerState::operation_enabled);
-    if (!word) break;
-    drive.write_controlword(*word);
-  }
-  ASSERT_EQ(state_of(drive), PowerState::operation_enabled);
-}
-
-// Reads until `done` holds, at most `limit_s`; true if it held.
-bool eventually(Drive& drive, const std::function<bool(const DriveFeedback&)>& done, double limit_s = 1.5) {
-  const auto end = Clock::now() + std::chrono::duration<double>(limit_s);
-  while (Clock::now() < end) {
-    if (done(drive.read())) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  return false;
-}
 
 // The message of the DriveError `call` throws; fails the test if it does not.
 std::string drive_error(const std::function<void()>& call) {
