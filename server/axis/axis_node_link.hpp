@@ -47,8 +47,10 @@ struct AxisNodeConfig {
   DriveSettings drive_settings;
   PositioningSettings positioning;
   // The only server this node obeys (its DDS participant name, --dds-name; under DDS Security also
-  // its certificate's CN). Empty: any server.
-  std::string server_name;
+  // its certificate's CN). By default netmc-server's own default name, so that no other
+  // participant's job (a second site's server, a test tool, a rogue) reaches an axis unless the
+  // operator says so. Empty (--any-server): any server.
+  std::string server_name = "netmc-server";
 };
 
 // An axis's drive as the node last saw it, for its status.

@@ -77,10 +77,16 @@ int main(int argc, char** argv) {
                  "--position-window and --velocity-limit (or its map file's limits)")
       ->envname("NETMC_DRIVE")
       ->take_all();
-  app.add_option("--server-name", config.server_name,
-                 "Obey only the server whose DDS participant name is NAME (netmc-server --dds-name; under "
-                 "--security its certificate must name it too); default: any server")
-      ->envname("NETMC_SERVER_NAME");
+  auto* server_name_option =
+      app.add_option("--server-name", config.server_name,
+                     "Obey only the server whose DDS participant name is NAME (netmc-server --dds-name; under "
+                     "--security its certificate must name it too); default netmc-server, the server's own default")
+          ->envname("NETMC_SERVER_NAME");
+  bool any_server = false;
+  app.add_flag("--any-server", any_server,
+               "Obey any server on the DDS domain, whatever its name (without DDS Security, any participant "
+               "can then start a job on an idle axis: the axis's limits still hold)")
+      ->excludes(server_name_option);
   app.add_option("--quick-stop-deceleration", config.drive_settings.quick_stop_deceleration_m_s2,
                  "Deceleration (m/s^2) of the drive's quick stop after a trip or the watchdog (CiA 402 0x6085)")
       ->check(CLI::PositiveNumber);
@@ -145,7 +151,11 @@ int main(int argc, char** argv) {
     config.axes = netmc::axis::parse_axis_list(axes);
     const auto flag_limits = netmc::axis::parse_axis_limits(limit_flags, config.axes);
     netmc::job::check_name(config.node, "--node");
-    if (!config.server_name.empty()) netmc::job::check_name(config.server_name, "--server-name");
+    if (any_server) {
+      config.server_name.clear();
+    } else {
+      netmc::job::check_name(config.server_name, "--server-name");  // empty too: --any-server says that
+    }
     config.positioning.timeout = std::chrono::milliseconds(positioning_timeout_ms);
     // The plant: --plant, else the one a simulated drive names.
     std::string plant = plant_flag;
@@ -200,7 +210,8 @@ int main(int argc, char** argv) {
                  NETMC_VERSION, axes, config.plant, drives_text, netmc::axis::describe_axis_limits(limits, config.axes), clock,
                  netmc::dds::time_base_name(config.time_base), dds.domain_id, context.describe_transport(),
                  context.identity(), scheduling_outcome.describe(),
-                 config.server_name.empty() ? "" : ", obeys server " + config.server_name + " only");
+                 config.server_name.empty() ? ", obeys any server (--any-server)"
+                                             : ", obeys server " + config.server_name + " only");
     if (clock == "realtime") {
       netmc::axis::RealtimeAxisNode node(context, config, std::chrono::milliseconds(watchdog_ms));
       return serve(node);

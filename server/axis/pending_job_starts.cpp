@@ -1,5 +1,7 @@
 #include "server/axis/pending_job_starts.hpp"
 
+#include <algorithm>
+
 namespace netmc::axis {
 
 void PendingJobStarts::wait(const netmc::dds::JobControl& begin, Clock::time_point now) {
@@ -10,6 +12,11 @@ void PendingJobStarts::hold_back(const netmc::dds::JobControl& control) {
   const auto it = waiting_.find(control.axis());
   if (it == waiting_.end()) return;
   auto& held = it->second.held_back;
+  const auto has_spec = [](const netmc::dds::JobControl& c) { return !c.job_spec().empty(); };
+  if (has_spec(control) &&
+      static_cast<std::size_t>(std::count_if(held.begin(), held.end(), has_spec)) >= kMaxHeldBackSpecs) {
+    held.erase(std::find_if(held.begin(), held.end(), has_spec));
+  }
   if (held.size() >= kMaxHeldBack) held.erase(held.begin());
   held.push_back(control);
 }

@@ -27,6 +27,10 @@ class PendingJobStarts {
   // Later control kept per waiting axis; beyond it the oldest is dropped (a flood of control
   // for one axis cannot grow the node).
   static constexpr std::size_t kMaxHeldBack = 32;
+  // Of those, at most one carries a job spec (up to 4 MiB each): a server begins one job at a time
+  // on an axis, so a second spec behind a waiting start is a peer's, and the older one goes. A
+  // waiting axis then holds at most two specs, however many begins a peer sends.
+  static constexpr std::size_t kMaxHeldBackSpecs = 1;
 
   // The start `begin` waits until it is linked to its server. Only for an axis that does not wait
   // yet: a waiting axis's control is held back (hold_back), its start included.

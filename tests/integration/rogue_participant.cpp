@@ -9,7 +9,9 @@
 //           that spoof the node (its participant, its name, its axes). Prints what it sent.
 //   begin   acts as a server that never reads: BEGIN_ITERATION of its own job to an idle --axis
 //           every --every seconds, with no feedback or event reader, so the node can never
-//           start the job (its server must read the axis's feedback first).
+//           start the job (its server must read the axis's feedback first). --count stops
+//           after that many; --spec-bytes pads each job spec to that size (an unknown field:
+//           the spec still parses), to see what held starts cost a node.
 //   flood   --count random setpoints as fast as it can to the partitions of --axis (comma-
 //           separated axes), on the setpoint topic of the node's clock: random server (its own
 //           identity, a made-up one), job, iteration, cycle and command. Prints the rate.
@@ -23,11 +25,13 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <csignal>
 #include <limits>
 #include <optional>
 #include <random>
 #include <thread>
+#include <vector>
 
 #include "dds_typesPubSubTypes.h"
 #include "idl/job.pb.h"
@@ -53,6 +57,8 @@ struct Options {
   double seconds = 30.0;
   double every_s = 1.0;
   std::size_t count = 300000;
+  std::size_t begins = std::numeric_limits<std::size_t>::max();
+  std::size_t spec_bytes = 0;
   bool control = false;
   bool reading_feedback = false;
 };
@@ -81,6 +87,24 @@ std::vector<std::uint8_t> rogue_job_spec(const nd::NodeStatus& node, const std::
   netmc::job::apply_defaults(spec);
   const std::string bytes = spec.SerializeAsString();
   return {bytes.begin(), bytes.end()};
+}
+
+// `spec` padded to `size` bytes with field 1000 (length-delimited, zeros): a field no JobSpec
+// has, which protobuf keeps as unknown, so the spec still parses.
+void pad_spec(std::vector<std::uint8_t>& spec, std::size_t size) {
+  const auto varint = [&spec](std::uint64_t value) {
+    do {
+      const auto low = static_cast<std::uint8_t>(value & 0x7F);
+      value >>= 7;
+      spec.push_back(value ? static_cast<std::uint8_t>(low | 0x80) : low);
+    } while (value);
+  };
+  constexpr std::size_t kHeader = 2 + 4;  // the tag of field 1000 and a length of up to 4 bytes
+  if (size <= spec.size() + kHeader) return;
+  const std::size_t padding = size - spec.size() - kHeader;
+  varint((1000u << 3) | 2u);
+  varint(padding);
+  spec.resize(spec.size() + padding, 0);
 }
 
 int drive(const Options& options) {
@@ -204,13 +228,16 @@ int begin_without_reader(const Options& options) {
   begin.iteration(1);
   begin.kind(nd::CONTROL_BEGIN_ITERATION);
   begin.start_position_m(0.0);
-  begin.job_spec(rogue_job_spec(*node, options.axis, node->clock()));
-  fmt::print("rogue: sending BEGIN_ITERATION to axis {} (node {}) every {} s, {}\n", options.axis, node->node(),
-             options.every_s, options.reading_feedback ? "reading its feedback, writing no setpoints" : "reading nothing");
+  auto spec = rogue_job_spec(*node, options.axis, node->clock());
+  pad_spec(spec, options.spec_bytes);
+  begin.job_spec(spec);
+  fmt::print("rogue: sending BEGIN_ITERATION to axis {} (node {}) every {} s, {}, job spec {} bytes\n", options.axis,
+             node->node(), options.every_s,
+             options.reading_feedback ? "reading its feedback, writing no setpoints" : "reading nothing", spec.size());
   std::fflush(stdout);
   std::size_t sent = 0;
   const auto end = Clock::now() + std::chrono::milliseconds(static_cast<long>(options.seconds * 1e3));
-  while (Clock::now() < end && !g_stop.load()) {
+  while (Clock::now() < end && !g_stop.load() && sent < options.begins) {
     begin.job_id(5000 + sent);
     begin.start_time_s(nd::time_base_now_s(nd::parse_time_base(node->time_base())) + 0.3);
     nd::write_checked(control, &begin);
@@ -480,6 +507,10 @@ int main(int argc, char** argv) {
   drive_command->add_flag("--nan", options.nan, "Send NaN commands");
   app.get_subcommand("begin")->add_option("--every", options.every_s, "Seconds between two begins")
       ->check(CLI::Range(0.001, 60.0));
+  app.get_subcommand("begin")->add_option("--count", options.begins, "Stop after this many begins")
+      ->check(CLI::Range(1, 1000000));
+  app.get_subcommand("begin")->add_option("--spec-bytes", options.spec_bytes, "Pad each job spec to this size")
+      ->check(CLI::Range(0, 4194304));
   app.get_subcommand("begin")->add_flag("--reading-feedback", options.reading_feedback,
                                         "Read the axis's feedback and events (but write no setpoints)");
   app.get_subcommand("flood")->add_option("--count", options.count, "Setpoints to send")

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Two attacks of a rogue DDS participant (tests/integration/rogue_participant.cpp) on an axis
-# node's only thread, without DDS Security, on loopback:
+# Three attacks of a rogue DDS participant (tests/integration/rogue_participant.cpp) on an axis
+# node's only thread, without DDS Security, on loopback. Node pair obeys any server (--any-server),
+# so that the rogue's own jobs reach it; node lxy has default flags (it obeys netmc-server only):
 #   1. begin: BEGIN_ITERATION of a job of its own, every second, to an idle axis (pz) of the node
 #      that runs a realtime job on its other two axes (px, py), with no reader of the node's
 #      feedback: the node cannot start that job, and waiting for its server to read must not
@@ -21,6 +22,11 @@
 #      them; reliability repairs them, but on a loaded 2-core host one exchange once took over the
 #      server's default 2 s (CI: "axis y did not answer cycle 0 of iteration 1"). What is tested
 #      is that forgeries change nothing, not the latency under a flood: --axis-timeout 20000.
+#   3. held starts: 33 begins with 4 MiB job specs, 10 ms apart, to axis x of node lxy (default
+#      flags: ignored by name), then at once a lockstep job on x and y, which must start without
+#      waiting and equal netmc sim; the same 33 to pz of node pair (it obeys any server: the first
+#      waits for the rogue to read, the others are held behind it, one spec at most). Each node's
+#      VmRSS must grow by less than 64 MiB (a 4-axis node that held every spec grew to 711 MiB).
 # Usage: rogue_start_and_flood.sh BUILD_DIR
 source "$(dirname "$0")/lib.sh" "$@"
 axis_bin=$netmc_axis
@@ -29,7 +35,7 @@ dds=(--domain "$domain" --transport udp)
 
 # Command limit 5, as the other realtime tests on this loaded 2-core machine: a stall of the host
 # makes ADRC ask more than the rated 1 for a cycle, and that trip is not what is tested here.
-start pair "$axis_bin" --node pair --axes px,py,pz --clock realtime --command-limit 5 "${dds[@]}"
+start pair "$axis_bin" --node pair --axes px,py,pz --clock realtime --command-limit 5 --any-server "${dds[@]}"
 pair_pid=${pids[-1]}
 start lxy "$axis_bin" --node lxy --axes x,y "${dds[@]}"
 lxy_pid=${pids[-1]}
@@ -116,4 +122,28 @@ lockstep_job_under_flood setpoints
 grep -q "dropped a forged setpoint for axis [xy]" "$tmp/lxy.log" || { echo "FAIL: the flood never reached node lxy"; exit 1; }
 lockstep_job_under_flood "job controls" --control
 grep -q "dropped a forged job control for axis [xy]" "$tmp/lxy.log" || { echo "FAIL: the flood never reached node lxy"; exit 1; }
+
+# 3. Held starts with 4 MiB job specs: to a node with default flags, then to one that obeys any server.
+# held_starts NODE_PID AXIS: 33 begins to AXIS; prints and checks the node's VmRSS growth.
+held_starts() {
+  local node_pid=$1 axis=$2 rss_before rss_after log=$tmp/rogue-held-$2.log
+  rss_before=$(rss_kib "$node_pid")
+  "$rogue" begin --axis "$axis" --every 0.01 --count 33 --spec-bytes 4194000 --seconds 60 --domain "$domain" \
+    >"$log" 2>&1 || { echo "FAIL: the rogue did not begin on $axis"; cat "$log"; exit 1; }
+  grep -q "33 BEGIN_ITERATION sent" "$log" || { echo "FAIL: the rogue did not send 33 begins"; cat "$log"; exit 1; }
+  sleep 1  # the last of 33 x 4 MiB arrive (fragments on loopback)
+  rss_after=$(rss_kib "$node_pid")
+  echo "33 begins with 4 MiB job specs to $axis: VmRSS $rss_before KiB before, $rss_after KiB after"
+  [ $((rss_after - rss_before)) -lt 65536 ] || { echo "FAIL: the node grew by more than 64 MiB"; exit 1; }
+}
+held_starts "$lxy_pid" x
+grep -q "participant [0-9a-f]* ('rogue') is ignored: this node obeys server 'netmc-server' only" "$tmp/lxy.log" ||
+  { echo "FAIL: node lxy (default flags) did not ignore the rogue by name"; tail -n 5 "$tmp/lxy.log"; exit 1; }
+t0=$EPOCHREALTIME
+"$netmc" run --server "127.0.0.1:$port" --quiet "${study[@]}" --json "$tmp/after-held.json" >"$tmp/after-held.out" 2>&1 ||
+  { echo "FAIL: the job after the held starts failed"; cat "$tmp/after-held.out"; exit 1; }
+same_json "$tmp/sim.json" "$tmp/after-held.json" "the lockstep job right after 33 forged 4 MiB begins"
+echo "the real job right after them: $(awk -v a="$t0" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.1f", b - a }') s, equal to netmc sim"
+held_starts "$pair_pid" pz
+
 kill -0 "$lxy_pid" && kill -0 "$pair_pid" || { echo "FAIL: an attacked node died"; exit 1; }

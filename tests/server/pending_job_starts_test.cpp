@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <vector>
+
 #include "server/axis/pending_job_starts.hpp"
 
 namespace netmc::axis {
@@ -65,6 +68,35 @@ TEST(PendingJobStarts, HeldBackControlIsBoundedAndTheOldestGoFirst) {
   ASSERT_EQ(settled[0].held_back.size(), PendingJobStarts::kMaxHeldBack);
   EXPECT_EQ(settled[0].held_back.front().job_id(), 100u + 10u);
   EXPECT_EQ(settled[0].held_back.back().job_id(), 100u + sent - 1);
+}
+
+// 33 begins with 4 MiB specs from a peer to one waiting axis (without the bound, a 4-axis node
+// grew to 711 MiB): the waiting start and one held spec remain, and the rest of the held-back
+// control keeps its order.
+TEST(PendingJobStarts, HeldBackJobSpecsAreBoundedToOne) {
+  PendingJobStarts starts;
+  const auto t0 = Clock::now();
+  const std::vector<std::uint8_t> spec(4u << 20, 0x2A);
+  auto begin = control("x", 1, netmc::dds::CONTROL_BEGIN_ITERATION);
+  begin.job_spec(spec);
+  starts.wait(begin, t0);
+  starts.hold_back(control("x", 1, netmc::dds::CONTROL_END_ITERATION));
+  for (std::uint64_t job = 2; job <= 33; ++job) {
+    auto forged = control("x", job, netmc::dds::CONTROL_BEGIN_ITERATION);
+    forged.job_spec(spec);
+    starts.hold_back(forged);
+  }
+  starts.hold_back(control("x", 1, netmc::dds::CONTROL_END_JOB));
+  const auto settled = starts.settle([](const netmc::dds::JobControl&) { return true; }, t0);
+  ASSERT_EQ(settled.size(), 1u);
+  EXPECT_EQ(settled[0].begin.job_spec().size(), spec.size());
+  std::size_t spec_bytes = 0;
+  for (const auto& held : settled[0].held_back) spec_bytes += held.job_spec().size();
+  EXPECT_EQ(spec_bytes, spec.size());
+  ASSERT_EQ(settled[0].held_back.size(), 3u);
+  EXPECT_EQ(settled[0].held_back[0].kind(), netmc::dds::CONTROL_END_ITERATION);
+  EXPECT_EQ(settled[0].held_back[1].job_id(), 33u);  // the newest begin
+  EXPECT_EQ(settled[0].held_back[2].kind(), netmc::dds::CONTROL_END_JOB);
 }
 
 }  // namespace
