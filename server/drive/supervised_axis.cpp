@@ -147,7 +147,7 @@ void SupervisedAxis::begin_iteration(double position_m) {
   const auto state = decode_statusword(reading_.statusword);
   running_ = !fault_ && state == PowerState::operation_enabled;
   supervision_.begin();
-  if (running_ && reference_m_) set_cycle_budget(sample_period_s_);
+  if (running_ && reference_m_) set_cycle_budget(std::max(sample_period_s_, kMinCycleBudgetS));
   if (!fault_ && !running_) {
     trip(fmt::format("the drive is not in Operation enabled at the start of the iteration: {} (error {})",
                      state ? power_state_name(*state) : "no CiA 402 state", describe_error_code(reading_.error_code)));

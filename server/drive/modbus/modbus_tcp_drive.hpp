@@ -14,10 +14,10 @@
 // answer to one request is taken for the next. The next call connects again, at most once per
 // 200 ms; the call that failed has thrown first, so a reconnect never passes unnoticed in a job.
 //
-// A job's cycle budget (set_cycle_budget, the job's period): the requests of one cycle, from the
+// A job's cycle budget (set_cycle_budget: the job's period, at least 20 ms): the requests of one cycle, from the
 // end of one read() to the end of the next (the setpoint's write and the feedback's read), wait
 // for their answers at most the budget together. One that runs out fails as "drive exchange took
-// 5.08 ms without an answer, over the 5 ms cycle budget" and closes the connection; the next
+// 20.1 ms without an answer, over the 20 ms cycle budget" and closes the connection; the next
 // request (the trip's quick stop) connects again at once, without the 200 ms pause, and is sent
 // with what is left of the cycle's budget: one slow drive costs its node's other axes at most one
 // budget per cycle.
