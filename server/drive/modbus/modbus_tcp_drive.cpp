@@ -132,6 +132,7 @@ void ModbusTcpDrive::plan_reads() {
 
 void ModbusTcpDrive::connect(std::chrono::milliseconds connect_timeout, const std::string& operation) {
   disconnect();
+  reconnected_at_once_ = false;
   last_connect_attempt_ = Clock::now();
   attempted_ = true;
   const std::string where = fmt::format("connect to {}:{}", host_, port_);
@@ -200,6 +201,7 @@ void ModbusTcpDrive::ensure_connected(const std::string& operation) {
     throw;
   }
   statistics_.record_reconnect();
+  reconnected_at_once_ = at_once;
 }
 
 void ModbusTcpDrive::fail_link(const std::string& operation, const std::string& cause) {
@@ -228,8 +230,9 @@ std::size_t ModbusTcpDrive::exchange(const std::uint8_t* pdu, std::size_t pdu_le
   if (length == -1) {
     const int error = errno;
     if (error == ETIMEDOUT && limit_s < timeout_s_) {
-      // The drive is slow, the link may be sound: the trip's quick stop goes out at once.
-      reconnect_at_once_ = true;
+      // The drive is slow, the link may be sound: the trip's quick stop goes out at once (once:
+      // after that, reconnects wait their 200 ms as after any failure).
+      reconnect_at_once_ = !reconnected_at_once_;
       fail_link(operation, fmt::format("drive exchange took {} without an answer, over the {} cycle budget",
                                        format_duration(cycle_waited_s_), format_duration(budget_s_)));
     }

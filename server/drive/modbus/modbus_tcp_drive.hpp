@@ -115,6 +115,7 @@ class ModbusTcpDrive final : public Drive {
   double budget_s_ = 0.0;          // 0: none
   double cycle_waited_s_ = 0.0;    // waited for answers since the last read() ended
   bool reconnect_at_once_ = false;  // the last failure was the budget's, not the link's
+  bool reconnected_at_once_ = false;  // this connection was such a reconnect
 };
 
 }  // namespace netmc::drive::modbus

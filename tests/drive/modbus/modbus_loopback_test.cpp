@@ -31,17 +31,6 @@
 namespace netmc::drive {
 namespace {
 
-// The message of the DriveError `call` throws; fails the test if it does not.
-std::string drive_error(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const DriveError& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no DriveError";
-  return {};
-}
-
 // The drive the emulator runs, driven directly: enabled in CST with `torque` from rest at 0, run
 // for `elapsed_s`.
 EmulatedDrive reference_drive(double torque, double elapsed_s) {

@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <thread>
 
 #include "server/drive/cia402.hpp"
@@ -98,6 +99,17 @@ inline bool eventually(Drive& drive, const std::function<bool(const DriveFeedbac
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   return false;
+}
+
+// The message of the DriveError `call` throws; fails the test if it does not.
+inline std::string drive_error(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const DriveError& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no DriveError";
+  return {};
 }
 
 }  // namespace netmc::drive

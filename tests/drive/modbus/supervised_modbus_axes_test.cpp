@@ -180,5 +180,25 @@ TEST(SupervisedModbusAxes, ADriveWhosePositionFreezesTripsItsAxisAloneAtTheThird
   EXPECT_NE(out.fault.find("unchanged for 3 samples"), std::string::npos) << out.fault;
 }
 
+// The master alone: a budget that runs out closes the connection; the next request (the trip's
+// quick stop) connects again at once and gets what is left of the budget; after that the master
+// waits its 200 ms before connecting again, so a slow drive is not asked again every cycle.
+TEST(SupervisedModbusAxes, AfterABudgetRunsOutOnlyTheQuickStopConnectsAtOnce) {
+  InjectedFault slow{0.0, InjectedFault::Kind::slow};
+  slow.delay_s = 0.040;
+  RunningEmulator emulator(with_watchdog(slow));
+  const auto master = master_of(emulator.port(), 0.2);
+  master->open();  // 40 ms: within the drive's own timeout
+  master->set_cycle_budget(0.020);
+  const auto start = Clock::now();
+  const std::string read = drive_error([&] { master->read(); });
+  EXPECT_GE(seconds_between(start, Clock::now()), 0.020);  // it waited its budget, no less
+  EXPECT_NE(read.find("without an answer, over the 20 ms cycle budget"), std::string::npos) << read;
+  const std::string stop = drive_error([&] { master->write_controlword(controlword::quick_stop); });
+  EXPECT_NE(stop.find("write of controlword (register 16): drive exchange took"), std::string::npos) << stop;
+  const std::string next = drive_error([&] { master->read(); });
+  EXPECT_NE(next.find("not connected"), std::string::npos) << next;
+}
+
 }  // namespace
 }  // namespace netmc::drive
