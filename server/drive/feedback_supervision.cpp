@@ -35,11 +35,11 @@ std::optional<std::string> FeedbackSupervision::check(const SupervisedSample& sa
 
 std::optional<std::string> FeedbackSupervision::jumped(const SupervisedSample& sample) const {
   if (!previous_ || !std::isfinite(velocity_limit_m_s_)) return std::nullopt;
-  const double elapsed_s = sample.time_s - previous_->time_s;
+  const double elapsed_s = sample.time_s - previous_->read_start_s;
   const double step_m = std::abs(sample.position_m - previous_->position_m);
   const double allowed_m = velocity_limit_m_s_ * elapsed_s * (1.0 + kJumpMargin);
   if (step_m <= allowed_m) return std::nullopt;
-  return fmt::format("feedback jumped {:.3g} mm in {:.3g} ms at cycle {}, more than the {:.3g} mm the velocity "
+  return fmt::format("feedback jumped {:.3g} mm within {:.3g} ms at cycle {}, more than the {:.3g} mm the velocity "
                      "limit {:g} m/s allows (with a {:g} % margin)",
                      step_m * 1e3, elapsed_s * 1e3, sample.cycle, allowed_m * 1e3, velocity_limit_m_s_,
                      kJumpMargin * 100.0);

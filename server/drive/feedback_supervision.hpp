@@ -15,10 +15,15 @@ namespace netmc::drive {
 
 struct SupervisedSample {
   std::uint64_t cycle = 0;  // the job's cycle k (named in a trip)
-  double time_s = 0.0;      // when the drive was read (s, any origin): jumps are judged over it
+  double time_s = 0.0;      // when the drive's answer was in (s, any origin)
   double reference_m = 0.0;  // the job's reference for this axis at the sample's instant
   double position_m = 0.0;
   double velocity_m_s = 0.0;
+  // When the read was asked for (same origin; time_s for a drive read at once): the drive
+  // latched the previous reading after the previous sample's read_start_s and this one before
+  // time_s, so a jump is judged over the longest that can have passed between the two (a node
+  // that stalls between the two halves of an exchange then catches up does not make a step).
+  double read_start_s = 0.0;
 };
 
 class FeedbackSupervision {

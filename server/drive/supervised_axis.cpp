@@ -40,14 +40,16 @@ void SupervisedAxis::end_iteration() {
   set_cycle_budget(0.0);
 }
 
-void SupervisedAxis::check_feedback(double time_s) {
+void SupervisedAxis::check_feedback(double time_s, std::chrono::steady_clock::time_point read_start) {
   if (!reference_m_ || !running_ || fault_) return;
   SupervisedSample sample;
   sample.cycle = static_cast<std::uint64_t>(std::llround(time_s / sample_period_s_));
-  // A drive on its own time was read now: a jump is judged over the time that really passed.
-  sample.time_s = drive_->virtual_time()
-                      ? time_s
-                      : std::chrono::duration<double>(std::chrono::steady_clock::now() - epoch_).count();
+  // A drive on its own time was read just now: a jump is judged over the time that really passed.
+  const auto since_epoch = [this](std::chrono::steady_clock::time_point at) {
+    return std::chrono::duration<double>(at - epoch_).count();
+  };
+  sample.time_s = drive_->virtual_time() ? time_s : since_epoch(std::chrono::steady_clock::now());
+  sample.read_start_s = drive_->virtual_time() ? time_s : since_epoch(read_start);
   sample.reference_m = reference_m_(time_s);
   sample.position_m = reading_.position_m;
   sample.velocity_m_s = reading_.velocity_m_s;
@@ -221,6 +223,7 @@ void SupervisedAxis::apply(const std::vector<Delivery>& deliveries, double until
 }
 
 const DriveFeedback& SupervisedAxis::sample(double time_s) {
+  const auto read_start = std::chrono::steady_clock::now();
   time_s_ = std::max(time_s_, time_s);
   reading_time_s_ = time_s_;
   try {
@@ -236,7 +239,7 @@ const DriveFeedback& SupervisedAxis::sample(double time_s) {
     trip(error.what());
   }
   refresh();
-  check_feedback(time_s);
+  check_feedback(time_s, read_start);
   return reading_;
 }
 

@@ -113,7 +113,8 @@ class SupervisedAxis {
   void check_state();
   void enable_now();     // virtual time: controlwords to Operation enabled, synchronously
   void apply_one(const Delivery& delivery);
-  void check_feedback(double time_s);  // against the reference, in a running iteration
+  // Against the reference, in a running iteration; the drive was asked at `read_start`.
+  void check_feedback(double time_s, std::chrono::steady_clock::time_point read_start);
   void set_cycle_budget(double budget_s);
 
   std::shared_ptr<Drive> drive_;

@@ -24,7 +24,8 @@ constexpr double kNone = std::numeric_limits<double>::infinity();
 constexpr double kH = 0.005;
 
 SupervisedSample at(std::uint64_t k, double reference_m, double position_m, double velocity_m_s = 0.0) {
-  return SupervisedSample{k, static_cast<double>(k) * kH, reference_m, position_m, velocity_m_s};
+  const double t = static_cast<double>(k) * kH;
+  return SupervisedSample{k, t, reference_m, position_m, velocity_m_s, t};
 }
 
 // Where a reference at `speed_m_s` from 0 is at cycle k.
@@ -102,11 +103,29 @@ TEST(FeedbackSupervision, AJumpBeyondTheVelocityLimitsStepWithItsMarginTripsAtOn
   };
   std::string why;
   EXPECT_EQ(first_trip(checks, 20, step_at_7(allowed + 1e-6), &why), 7u);
-  EXPECT_NE(why.find("feedback jumped 3.75 mm in 5 ms at cycle 7, more than the 3.75 mm the velocity limit 0.5 m/s "
+  EXPECT_NE(why.find("feedback jumped 3.75 mm within 5 ms at cycle 7, more than the 3.75 mm the velocity limit 0.5 m/s "
                      "allows (with a 50 % margin)"),
             std::string::npos)
       << why;
   EXPECT_FALSE(first_trip(checks, 20, step_at_7(allowed - 2e-6)));  // 1e-6 m of the ramp itself
+
+  // A node that stalls 36 ms between asking for sample 6 and getting its answer, then takes
+  // sample 7 at once: the drive may have latched the two readings 36.2 ms apart, over which
+  // 0.287 mm at 8 mm/s is no jump; the same step between two quick reads 0.165 ms apart is one.
+  const auto stalled = [](double stall_s) {
+    return [stall_s](std::uint64_t k) {
+      SupervisedSample sample = at(k, 0.05, 0.05 + (k >= 7 ? 0.287e-3 : 0.0), 0.008 + 1e-6 * static_cast<double>(k));
+      if (k == 6) sample.time_s += stall_s;
+      if (k == 7) sample.read_start_s = sample.time_s = 6 * kH + stall_s + 0.165e-3;
+      return sample;
+    };
+  };
+  EXPECT_FALSE(first_trip(checks, 8, stalled(0.036)));
+  EXPECT_EQ(first_trip(checks, 8, [](std::uint64_t k) {
+    SupervisedSample sample = at(k, 0.05, 0.05 + (k >= 7 ? 0.287e-3 : 0.0), 1e-6 * static_cast<double>(k));
+    if (k == 7) sample.read_start_s = sample.time_s = 6 * kH + 0.165e-3;
+    return sample;
+  }), 7u);
 }
 
 TEST(AxisLimits, TheDefaultFollowingErrorLimitIsATenthOfTheWindowBoundedByTheVelocity) {
