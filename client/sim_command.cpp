@@ -14,6 +14,7 @@
 #include "client/study_flags.hpp"
 #include "client/study_report.hpp"
 #include "client/study_runner.hpp"
+#include "plant/plant_registry.hpp"
 #include "server/job/controller_registry.hpp"
 #include "server/job/delay_compensators.hpp"
 #include "server/job/job_builder.hpp"
@@ -38,6 +39,9 @@ CLI::App* add_sim_flags(CLI::App& app, SimFlags& flags) {
   sim->add_flag("--list-controllers", flags.list_controllers,
                 "Print every controller netmc runs (a Markdown table: names, role, gains flag, source, the plants "
                 "its defaults are tuned for) and run nothing");
+  sim->add_flag("--list-plants", flags.list_plants,
+                "Print every named plant --plant takes (a Markdown table: name, model, source, input unit, travel, "
+                "rated input, parameters) and run nothing");
   sim->add_flag("--list-compensators", flags.list_compensators,
                 "Print every delay compensator --compensate takes (a Markdown table: name, what it does, what it "
                 "predicts with, source) and run nothing");
@@ -71,6 +75,10 @@ std::optional<SimStudy> run_sim(const SimFlags& flags, std::ostream& report, Tra
   }
   if (flags.list_controllers) {
     fmt::print("{}", job::ControllerRegistry::global().markdown_table());
+    return std::nullopt;
+  }
+  if (flags.list_plants) {
+    fmt::print("{}", plant::PlantRegistry::global().markdown_table());
     return std::nullopt;
   }
   if (flags.list_compensators) {

@@ -26,6 +26,7 @@ struct SimFlags {
   bool print_spec = false;
   bool list_presets = false;
   bool list_controllers = false;
+  bool list_plants = false;
   bool list_compensators = false;
   std::string plant_parameters;
   FailOnUnstable fail_on_unstable;

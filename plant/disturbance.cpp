@@ -63,6 +63,14 @@ void validate_disturbance(const Disturbance& d, std::string_view owner) {
   if (d.noise.stddev > 0.0) require_positive(owner, "disturbance.noise.bandwidth_hz", d.noise.bandwidth_hz);
 }
 
+Disturbance scaled(Disturbance d, double factor) {
+  d.constant *= factor;
+  d.sine_amplitude *= factor;
+  d.step_amplitude *= factor;
+  d.noise.stddev *= factor;
+  return d;
+}
+
 double smooth_part(const Disturbance& d, double t) {
   double value = d.constant + d.noise.value(t);
   if (d.sine_amplitude != 0.0) {

@@ -47,6 +47,9 @@ struct Disturbance {  // sum of the enabled parts
 // has stddev >= 0 and, when on, a bandwidth > 0.
 void validate_disturbance(const Disturbance& d, std::string_view owner);
 
+// `d` with every amplitude times `factor` (a disturbance in an input unit as an acceleration).
+Disturbance scaled(Disturbance d, double factor);
+
 // constant + sine + noise, i.e. d(t) without the step.
 double smooth_part(const Disturbance& d, double t);
 // True when the smooth part does not depend on t (no noise, and no sine or a sine of frequency 0).

@@ -15,7 +15,8 @@
 // `motor`. The encoder reads the carriage: position() and velocity() are x_l and x_l'.
 // The additive disturbance d (V) enters with the command, ahead of the drive (thesis ch. 3
 // Set3 adds its step "to the Y input"). Forces in volts of drive command, as LinearMotorAxis.
-// Integrated by RK4 with sub-steps no longer than max_substep_s (see the catalog for the bound).
+// Integrated by RK4 with sub-steps no longer than max_substep_s (plant/models/linmotor_flex.cpp
+// gives the bound).
 
 #include <array>
 #include <memory>

@@ -16,9 +16,10 @@ struct NominalAxisModel {
   double coulomb_velocity_scale_m_s = 1e-3;  // v_s (m/s)
 };
 
-// Axis `axis` (0 = X, 1 = Y, 2 = a third axis with Y's parameters) of the named plant; unset for a
-// plant whose nominal model is not of this form (linmotor's cogging, linmotor-flex's and stage004's
-// modes, hiwin's dead zone) or is unknown (a plant read from a file).
+// Axis `axis` (0 = X, 1 = Y, 2 = a third axis with Y's parameters) of the named plant (its
+// PlantModel's nominal_model); unset for a plant whose nominal model is not of this form
+// (linmotor's cogging, linmotor-flex's and stage004's modes, hiwin's dead zone) or is unknown (a
+// plant read from a file).
 std::optional<NominalAxisModel> nominal_axis_model(std::string_view plant_name, std::size_t axis);
 
 }  // namespace netmc::plant

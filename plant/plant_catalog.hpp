@@ -1,6 +1,7 @@
 #pragma once
 // Named plant sets for the CLI (--plant NAME) and the job specs: one AxisPlant per axis with the
-// parameters of the source paper. The reasoning behind every number is in plant_catalog.cpp.
+// parameters of the source paper. Each plant is a PlantModel of plant/models/ (its file gives the
+// reasoning behind every number); these functions look it up in the PlantRegistry.
 
 #include <cstddef>
 #include <memory>
@@ -9,7 +10,7 @@
 #include <vector>
 
 #include "plant/axis_plant.hpp"
-#include "plant/disturbance.hpp"
+#include "plant/plant_model.hpp"
 #include "plant/second_order_axis.hpp"
 
 namespace netmc::plant {
@@ -19,41 +20,20 @@ struct AxisSet {
   std::string description;
 };
 
-// "seed001", "ballscrew", "linmotor", "stage004", "linmotor-flex", "hiwin".
+// "seed001", "ballscrew", "linmotor", "stage004", "linmotor-flex", "hiwin" (the registry's order).
 std::vector<std::string> plant_names();
 
 // A plant read from a file, fmu:PATH.fmu[:...] or plugin:PATH.so[:...]: not the catalog's (the
 // job layer makes it, server/job/plant_source.hpp); the whole text is its name.
 bool is_file_plant(std::string_view name);
 
-// A parameter of a named plant that a job may change per axis (a payload, a friction level).
-struct PlantParameter {
-  std::string key;          // e.g. "load_kg"
-  std::string description;  // what it is, with its unit and the default of each axis
-};
-// The keys `name` takes; throws std::invalid_argument for an unknown plant.
+// The keys `name` takes (its own, then the input dead zone's where the model has none of its
+// own); throws std::invalid_argument for an unknown plant.
 std::vector<PlantParameter> plant_parameters(std::string_view name);
 // The unit of the plant's input, where an additive disturbance enters (V, N, m/s^2).
 std::string plant_input_unit(std::string_view name);
-
-// What the machine behind a named plant takes: its travel and its drive's rated input (in the
-// plant's input unit). netmc-axis uses them as the default limits of a simulated drive, so that a
-// node started with no limit still trips on a command or a position the machine could not take.
-// Where a source gives no figure the value is an assumption, marked so in plant_catalog.cpp.
-struct PlantRating {
-  double travel_min_m = 0.0;
-  double travel_max_m = 0.0;
-  double rated_input = 0.0;
-};
 // Throws std::invalid_argument for an unknown plant.
 PlantRating plant_rating(std::string_view name);
-
-// A job's changes to one axis of the set: parameters by key, applied in order over the axis's
-// nominal ones, and a disturbance in the plant's input unit.
-struct AxisOverrides {
-  std::vector<std::pair<std::string, double>> parameters;
-  Disturbance disturbance;
-};
 
 // axis_count 1..3 (X, Y, and a third axis with the Y parameters); `overrides` has at most
 // axis_count entries (axis 0 first; missing ones change nothing). Throws std::invalid_argument

@@ -14,7 +14,7 @@
 namespace netmc::plant {
 namespace {
 
-// Paper 001's Y axis as the catalog calibrates it (plant_catalog.cpp, seed001): a2 = -10 1/s,
+// Paper 001's Y axis as the catalog calibrates it (plant/models/seed001.cpp): a2 = -10 1/s,
 // friction 85 mm/s^2 smoothed over 1 mm/s; the forcing drives the velocity through zero.
 CoulombAxisCoefficients seed001_y(double w) { return {0.0, -10.0, w, 0.085, 1.0 / 1e-3}; }
 

@@ -1,10 +1,13 @@
 #include "plant/plant_catalog.hpp"
+#include "plant/plant_registry.hpp"
 #include "plant/second_order_axis.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,8 +15,15 @@
 namespace netmc::plant {
 namespace {
 
+// The test suite's build registers its own plant too (tests/components/test_mass_plant.cpp),
+// after the built-in ones.
+std::vector<std::string> built_in(std::vector<std::string> names) {
+  names.erase(std::remove(names.begin(), names.end(), "test-mass"), names.end());
+  return names;
+}
+
 TEST(PlantCatalog, Names) {
-  EXPECT_EQ(plant_names(),
+  EXPECT_EQ(built_in(plant_names()),
             (std::vector<std::string>{"seed001", "ballscrew", "linmotor", "stage004", "linmotor-flex", "hiwin"}));
 }
 
@@ -22,9 +32,63 @@ TEST(PlantCatalog, UnknownNameListsTheKnownOnes) {
     make_plant_set("x", 2);
     ADD_FAILURE();
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "plant: unknown name 'x' (expected one of: seed001, ballscrew, linmotor, stage004, "
-              "linmotor-flex, hiwin)");
+    const std::string built_in_names = "seed001, ballscrew, linmotor, stage004, linmotor-flex, hiwin";
+    EXPECT_TRUE(std::string(e.what()) == "plant: unknown name 'x' (expected one of: " + built_in_names + ")" ||
+                std::string(e.what()) == "plant: unknown name 'x' (expected one of: " + built_in_names + ", test-mass)")
+        << e.what();
+  }
+}
+
+// docs/plants.md carries the table netmc sim --list-plants prints (the test suite's build prints
+// its own plant's row too).
+TEST(PlantCatalog, TheDocsTableIsTheRegistrys) {
+  std::ifstream file(std::string(NETMC_TEST_DATA_DIR) + "/../../docs/plants.md");
+  ASSERT_TRUE(file) << "docs/plants.md";
+  std::stringstream docs;
+  docs << file.rdbuf();
+  std::string table;
+  std::istringstream lines(PlantRegistry::global().markdown_table());
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("`test-mass`") == std::string::npos) table += line + "\n";
+  }
+  EXPECT_NE(docs.str().find(table), std::string::npos)
+      << "docs/plants.md lacks the registry's table; netmc sim --list-plants prints it:\n"
+      << table;
+}
+
+// Each model's descriptor agrees with what it builds: the rating's travel holds the axis's start,
+// the parameters it lists are the keys it takes (each accepted at its own nominal-ish value 1 or
+// refused with a message naming it, never "has no parameter"), and a nominal model, where given,
+// is the built axis's small-signal response (the same velocity after 1 ms of a unit command from
+// rest, within the friction's share).
+TEST(PlantCatalog, EveryDescriptorMatchesWhatItBuilds) {
+  for (const auto& model : PlantRegistry::global().models()) {
+    SCOPED_TRACE(model.name);
+    EXPECT_LT(model.rating.travel_min_m, model.rating.travel_max_m);
+    EXPECT_GT(model.rating.rated_input, 0.0);
+    EXPECT_FALSE(model.title.empty());
+    EXPECT_FALSE(model.source.empty());
+    for (const auto& parameter : model.parameters) {
+      AxisOverrides change;
+      change.parameters = {{parameter.key, 1.0}};
+      try {
+        model.make_axis(0, &change);
+      } catch (const std::invalid_argument& e) {
+        EXPECT_EQ(std::string(e.what()).find("has no parameter"), std::string::npos) << e.what();
+      }
+    }
+    if (!model.nominal_model) continue;
+    const NominalAxisModel nominal = model.nominal_model(0);
+    auto axis = model.make_axis(0, nullptr);
+    axis->reset(0.0, 0.0);
+    const double h = 1e-3;
+    axis->advance(h, 1.0);
+    // x' after h from rest under u = 1: (b u - c) (1 - e^{a h}) / (-a), or (b u - c) h for a = 0.
+    const double drive = nominal.input_gain - nominal.coulomb_m_s2;
+    const double expected = nominal.damping_per_s == 0.0
+                                ? drive * h
+                                : drive * (1.0 - std::exp(nominal.damping_per_s * h)) / -nominal.damping_per_s;
+    EXPECT_NEAR(axis->velocity(), expected, 0.02 * std::abs(expected) + nominal.coulomb_m_s2 * h);
   }
 }
 
@@ -72,8 +136,9 @@ TEST(PlantCatalog, EverySetIsFiniteAndBoundedAfterOneSecondAtRest) {
       }
       if (count == 3) {
         EXPECT_EQ(set.axes[2]->describe(), set.axes[1]->describe()) << name;
-        // paper 002 uses the same parameters on both axes; hiwin is a single axis, copied
-        if (name != "ballscrew" && name != "hiwin") {
+        // paper 002 uses the same parameters on both axes; hiwin is a single axis, copied; the
+        // test suite's test-mass is one model for every axis
+        if (name != "ballscrew" && name != "hiwin" && name != "test-mass") {
           EXPECT_NE(set.axes[0]->describe(), set.axes[1]->describe()) << name;
         }
       }

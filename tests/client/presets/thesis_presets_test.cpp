@@ -157,7 +157,7 @@ namespace netmc::cli {
 namespace {
 
 // Thesis ch. 4: with the cogging harmonics adapting (C2), their estimates find the stage's
-// cogging (plant_catalog.cpp: X (0.05, 0.03), (0.02, -0.01), (0.01, 0.01) V; Y (0.04, -0.02),
+// cogging (plant/models/linmotor.cpp: X (0.05, 0.03), (0.02, -0.01), (0.01, 0.01) V; Y (0.04, -0.02),
 // (0.03, 0.02), (0.015, -0.01) V) within 0.01 V on Exp II, and the contour error drops.
 TEST(ThesisPresets, CoggingEstimatesFindTheStagesCogging) {
   const StudyPlan plan = make_preset("thesis-cogging");
