@@ -51,14 +51,18 @@ std::optional<std::string> FeedbackSupervision::frozen(const SupervisedSample& s
   repeats_ = repeated ? repeats_ + 1 : 1;
   const std::size_t slot = seen_ % kFrozenSamples;
   recent_reference_m_[slot] = sample.reference_m;
+  recent_job_time_s_[slot] = sample.job_time_s;
   recent_time_s_[slot] = sample.time_s;
   ++seen_;
   if (repeats_ < kFrozenSamples) return std::nullopt;
   // The oldest of the last kFrozenSamples samples is the next slot to be written.
   const std::size_t oldest = seen_ % kFrozenSamples;
   const double moved_m = std::abs(sample.reference_m - recent_reference_m_[oldest]);
-  const double span_s = sample.time_s - recent_time_s_[oldest];
+  const double span_s = sample.job_time_s - recent_job_time_s_[oldest];
   if (!(moved_m > kFrozenReferenceSpeedMS * span_s)) return std::nullopt;
+  // Reads that came in a burst (a node catching up after a stall) may repeat a moving encoder's
+  // count: only readings the drive latched at least half the samples' span apart count.
+  if (sample.read_start_s - recent_time_s_[oldest] < 0.5 * span_s) return std::nullopt;
   return fmt::format("feedback frozen: position {:.7g} m unchanged for {} samples while the reference moved {:.3g} mm "
                      "(cycle {})",
                      sample.position_m, repeats_, moved_m * 1e3, sample.cycle);

@@ -15,6 +15,7 @@ namespace netmc::drive {
 
 struct SupervisedSample {
   std::uint64_t cycle = 0;  // the job's cycle k (named in a trip)
+  double job_time_s = 0.0;  // its instant t_k, where the reference was taken
   double time_s = 0.0;      // when the drive's answer was in (s, any origin)
   double reference_m = 0.0;  // the job's reference for this axis at the sample's instant
   double position_m = 0.0;
@@ -64,6 +65,7 @@ class FeedbackSupervision {
   std::size_t repeats_ = 0;  // samples in a row with this position and velocity, bit for bit
   // The reference at the last kFrozenSamples samples (a ring), for how far it moved over them.
   double recent_reference_m_[kFrozenSamples] = {};
+  double recent_job_time_s_[kFrozenSamples] = {};
   double recent_time_s_[kFrozenSamples] = {};
   std::size_t seen_ = 0;
 };

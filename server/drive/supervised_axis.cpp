@@ -44,6 +44,7 @@ void SupervisedAxis::check_feedback(double time_s, std::chrono::steady_clock::ti
   if (!reference_m_ || !running_ || fault_) return;
   SupervisedSample sample;
   sample.cycle = static_cast<std::uint64_t>(std::llround(time_s / sample_period_s_));
+  sample.job_time_s = time_s;
   // A drive on its own time was read just now: a jump is judged over the time that really passed.
   const auto since_epoch = [this](std::chrono::steady_clock::time_point at) {
     return std::chrono::duration<double>(at - epoch_).count();

@@ -25,7 +25,7 @@ constexpr double kH = 0.005;
 
 SupervisedSample at(std::uint64_t k, double reference_m, double position_m, double velocity_m_s = 0.0) {
   const double t = static_cast<double>(k) * kH;
-  return SupervisedSample{k, t, reference_m, position_m, velocity_m_s, t};
+  return SupervisedSample{k, t, t, reference_m, position_m, velocity_m_s, t};
 }
 
 // Where a reference at `speed_m_s` from 0 is at cycle k.
@@ -84,6 +84,15 @@ TEST(FeedbackSupervision, NoFrozenTripAtStandstillOrBelowTheReferenceSpeed) {
   FeedbackSupervision frozen_only(kNone, kNone);
   EXPECT_FALSE(first_trip(frozen_only, 50, [](std::uint64_t k) { return at(k, 0.05 + ramp(0.019, k), 0.05); }));
   EXPECT_EQ(first_trip(frozen_only, 50, [](std::uint64_t k) { return at(k, 0.05 + ramp(0.021, k), 0.05); }), 2u);
+  // Samples 1-3 read in a burst 0.1 ms apart (a node catching up after a stall) repeat a moving
+  // axis's coarse count: no trip on them; an encoder that stays frozen trips once three of its
+  // readings were latched at least a period apart (samples 3, 4 and 5: 9.7 ms).
+  const auto burst = [](std::uint64_t k) {
+    SupervisedSample sample = at(k, 0.05 + ramp(0.09, k), k == 0 ? 0.0499 : 0.05);
+    if (k >= 1 && k <= 3) sample.read_start_s = sample.time_s = 3 * kH + 1e-4 * static_cast<double>(k);
+    return sample;
+  };
+  EXPECT_EQ(first_trip(frozen_only, 50, burst), 5u);
   // Repeated position with a changing velocity is no frozen encoder.
   EXPECT_FALSE(first_trip(frozen_only, 50, [](std::uint64_t k) {
     return at(k, 0.05 + ramp(0.09, k), 0.05, 1e-6 * static_cast<double>(k % 2));
