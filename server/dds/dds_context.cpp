@@ -147,8 +147,15 @@ DdsContext::DdsContext(const DdsOptions& options) : participants_(std::make_uniq
   const char* env_profiles = std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE");
   xml_loaded_ = !options.xml_profile_file.empty() || (env_profiles && *env_profiles);
   if (!options.participant_profile.empty()) {
-    participant_ = factory->create_participant_with_profile(options.domain_id, options.participant_profile,
-                                                            participants_.get(), StatusMask::none());
+    // The profile's QoS under netmc's own participant name (--dds-name, a node's --node): the name
+    // is what nodes obey (--server-name) and what the server lists nodes by, whatever a profile says.
+    DomainParticipantQos qos;
+    if (factory->get_participant_qos_from_profile(options.participant_profile, qos) != ReturnCode_t::RETCODE_OK) {
+      throw std::invalid_argument("--dds-participant-profile: no participant profile '" +
+                                  options.participant_profile.substr(0, 128) + "' in the loaded XML profiles");
+    }
+    qos.name(options.name);
+    participant_ = factory->create_participant(options.domain_id, qos, participants_.get(), StatusMask::none());
     transport_description_ = "XML profile " + options.participant_profile;
   } else {
     // The XML default participant profile, if any, is the starting point (Fast DDS reads the

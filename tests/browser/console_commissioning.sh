@@ -32,7 +32,9 @@ drive = json.load(open(sys.argv[2]))["nodes"][0]["drives"][0]
 assert abs(page["moved_mm"] - 65.0) <= 0.001 and abs(page["back_mm"] - 55.0) <= 0.001, page
 assert page["jogged_mm"] > 55.5, page  # the button held for about 1 s at 5 mm/s
 at_mm = float(drive["position_m"]) * 1e3
-assert abs(at_mm - page["stopped_mm"]) <= 0.001, (at_mm, page)
+# Within 5 um: the page shows um, and the two read the axis at different instants, while the
+# emulated axis, its power stage off after the quick stop, may still creep (1.4 um seen in CI).
+assert abs(at_mm - page["stopped_mm"]) <= 0.005, (at_mm, page)
 assert drive["state"] != "Operation enabled", drive
 print(f"page: moved to {page['moved_mm']:.3f} mm, back to {page['back_mm']:.3f} mm, jogged to "
       f"{page['jogged_mm']:.3f} mm, quick stop: {page['stopped_state']}; netmc nodes: {drive['state']} at {at_mm:.3f} mm")
