@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
                  "1 mm). The same samples trip on frozen feedback (position and velocity repeated bit for bit over 3 "
                  "samples while the reference moves faster than 20 mm/s) and on jumps (a step beyond the velocity "
                  "limit x the time between samples x 1.5); a drive on its own time must fit each cycle's exchange "
-                 "in the job's period, at least 20 ms");
+                 "in the job's period, at least 30 ms");
   app.add_option("--slew-limit", limit_flags.slew,
                  "Largest change of the applied command per second (units/s): steps are ramped, not tripped "
                  "(R, or AXIS=R entries)");

@@ -51,10 +51,12 @@ class SupervisedAxis {
   // in the period, at least kMinCycleBudgetS (its cycle budget, for the iterations).
   void follow_reference(std::function<double(double)> reference_m, double sample_period_s);
   // The least cycle budget: a loaded host stalls a process for up to 13 ms (cyclictest on the
-  // 2-core machines netmc is tested on), which a normal job must ride out, while a drive's own
+  // 2-core machines netmc is tested on), and with two tests and a build beside it a normal
+  // emulated drive's exchange once took over 20 ms (a CI run); a normal job must ride that out,
+  // while a drive slowed to 40 ms must still trip in the cycle it starts and a drive's own
   // fieldbus watchdog (100 ms on netmc-drive-emulator) must not run out on the node's other axes
   // while one slow drive uses its budget.
-  static constexpr double kMinCycleBudgetS = 0.020;
+  static constexpr double kMinCycleBudgetS = 0.030;
 
   // A new iteration from rest at `position_m`. A virtual-time drive restarts there and is enabled
   // at once (a latched fault stays: only the operator clears it); a drive on its own time must

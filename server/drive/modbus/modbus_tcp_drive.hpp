@@ -14,7 +14,7 @@
 // answer to one request is taken for the next. The next call connects again, at most once per
 // 200 ms; the call that failed has thrown first, so a reconnect never passes unnoticed in a job.
 //
-// A job's cycle budget (set_cycle_budget: the job's period, at least 20 ms): the requests of one cycle, from the
+// A job's cycle budget (set_cycle_budget: the job's period, at least 30 ms): the requests of one cycle, from the
 // end of one read() to the end of the next (the setpoint's write and the feedback's read), wait
 // for their answers at most the budget together. One that runs out fails as "drive exchange took
 // 20.1 ms without an answer, over the 20 ms cycle budget" and closes the connection; the next
