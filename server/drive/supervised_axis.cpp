@@ -224,7 +224,9 @@ void SupervisedAxis::apply(const std::vector<Delivery>& deliveries, double until
 }
 
 const DriveFeedback& SupervisedAxis::sample(double time_s) {
-  const auto read_start = std::chrono::steady_clock::now();
+  // The wall clock only for a supervised drive on its own time: not in the simulation's loop.
+  const auto read_start = reference_m_ && !drive_->virtual_time() ? std::chrono::steady_clock::now()
+                                                                  : std::chrono::steady_clock::time_point{};
   time_s_ = std::max(time_s_, time_s);
   reading_time_s_ = time_s_;
   try {
